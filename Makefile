@@ -1,0 +1,45 @@
+# bonered_alg -- `make derive` and `make test` are the two set-up commands (see README).
+PYTHON ?= python3
+VENV   := .venv
+PY     := $(VENV)/bin/python
+STAMP  := $(VENV)/.installed-$(shell sha256sum pyproject.toml | cut -c1-12)
+
+.PHONY: install system-deps derive derive-force test bench report lint clean
+
+$(STAMP): pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip
+	$(PY) -m pip install -q -e '.[dev]'
+	rm -f $(VENV)/.installed-* && touch $(STAMP)
+
+system-deps:
+	@bash scripts/install-system-deps.sh
+
+install: $(STAMP) system-deps
+
+derive: install
+	$(PY) -m bonered_alg.cli derive
+
+derive-force: install
+	$(PY) -m bonered_alg.cli derive --force
+
+test: install
+	$(PY) -m pytest -q
+
+bench: install
+	$(PY) bench/run.py --out bench/results.json
+
+report: install
+	@bash scripts/install-system-deps.sh --latex
+	$(PY) -m bonered_alg.cli derive
+	cd derivations && for f in *.tex; do \
+	  SOURCE_DATE_EPOCH=0 latexmk -pdf -interaction=nonstopmode -halt-on-error -quiet "$$f" || exit 1; \
+	done
+	cd derivations && latexmk -c -quiet >/dev/null
+
+lint: install
+	$(VENV)/bin/ruff check bonered_alg tests bench
+
+clean:
+	rm -rf .cache .pytest_cache derivations/*.pdf
+	cd derivations && rm -f *.aux *.log *.fls *.fdb_latexmk *.out

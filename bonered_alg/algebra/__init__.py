@@ -1,0 +1,1 @@
+"""Study-parameter (dual quaternion) algebra: one convention, symbolic and numeric."""

@@ -1,0 +1,1 @@
+"""Joints, legs and mechanisms: the input side of the pipeline."""

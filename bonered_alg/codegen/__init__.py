@@ -1,0 +1,1 @@
+"""Code generation: symbolic results -> plain numpy modules in ``generated/``."""

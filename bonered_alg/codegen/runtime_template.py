@@ -1,0 +1,209 @@
+"""Fixed runtime part of every generated IK module (copied verbatim into ``generated/``).
+
+It relies on names the generated part defines: ``MECHANISM``, ``PARAMETERS``,
+``PARAMETER_NOTES``, ``PARAMETER_UNITS``, ``POSE``, ``JOINTS``, ``_STEPS``, ``_ji``, ``_jo``,
+``_jo_study``, ``_SINGULARITIES``.
+"""
+
+RUNTIME = '''
+# ---------------------------------------------------------------- status codes
+OK = 0
+NO_REAL_SOLUTION = 1
+JOINT_AT_INFINITY = 2
+ON_BOUNDARY = 3
+INPUT_SINGULAR = 4
+INVALID_INPUT = 5
+STATUS = {
+    OK: "ok",
+    NO_REAL_SOLUTION: "no real solution: the pose is outside the reach of the leg that "
+                      "drives this joint (negative discriminant)",
+    JOINT_AT_INFINITY: "tan-half-angle joint parameter at infinity (joint angle pi) or a "
+                       "vanishing linear coefficient",
+    ON_BOUNDARY: "on the workspace boundary of a leg (double root, input singularity): the "
+                 "joint values are valid, the Jacobian is not",
+    INPUT_SINGULAR: "input singularity: det Ji = 0, dq/dX is unbounded",
+    INVALID_INPUT: "non-finite pose coordinate",
+}
+_DISC_RTOL = 1e-10
+_DET_RTOL = 1e-12
+
+
+def _params(func, params):
+    unknown = sorted(set(params) - set(PARAMETERS))
+    if unknown:
+        raise TypeError(f"{MECHANISM}.{func}: unknown geometric parameter(s) {unknown}; "
+                        f"expected some of {list(PARAMETERS)}")
+    out = []
+    for name, default in PARAMETERS.items():
+        value = params.get(name, default)
+        if value is None:
+            raise ValueError(
+                f"{MECHANISM}.{func}: geometric parameter {name!r} has no published value "
+                f"({PARAMETER_NOTES[name]}); pass {name}=<value in {PARAMETER_UNITS[name]}>")
+        value = numpy.asarray(value, dtype=float)
+        if not numpy.all(numpy.isfinite(value)):
+            raise ValueError(f"{MECHANISM}.{func}: geometric parameter {name!r} is not finite")
+        out.append(value)
+    return out
+
+
+def _pose(func, pose):
+    p = numpy.asarray(pose, dtype=float)
+    if p.ndim == 0 or p.shape[-1] != len(POSE):
+        raise ValueError(f"{MECHANISM}.{func}: pose must have shape (..., {len(POSE)}) with "
+                         f"coordinates {POSE}, got shape {p.shape}")
+    return p
+
+
+def _joints(func, q, shape):
+    q = numpy.asarray(q, dtype=float)
+    if q.ndim == 0 or q.shape[-1] != len(JOINTS):
+        raise ValueError(f"{MECHANISM}.{func}: joints must have shape (..., {len(JOINTS)}) "
+                         f"with coordinates {JOINTS}, got shape {q.shape}")
+    return numpy.broadcast_to(q, shape + (len(JOINTS),))
+
+
+def _mode(func, mode):
+    if not isinstance(mode, (int, numpy.integer)) or not 0 <= int(mode) < MODES:
+        raise ValueError(f"{MECHANISM}.{func}: mode must be an integer in [0, {MODES}), "
+                         f"got {mode!r}; see MODE_BITS")
+    return int(mode)
+
+
+def _solve(pose, mode, par):
+    shape = pose.shape[:-1]
+    cols = [pose[..., i] for i in range(len(POSE))]
+    status = numpy.zeros(shape, dtype=numpy.int8)
+    status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
+    solved = []
+    with numpy.errstate(all="ignore"):
+        for degree, kern, bit in _STEPS:
+            a, b, c = (numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+                       for v in kern(*cols, *solved, *par))
+            new = numpy.zeros(shape, dtype=numpy.int8)
+            if degree == 1:
+                root = -c / b
+                new[b == 0] = JOINT_AT_INFINITY
+            else:
+                sign = -1.0 if (mode >> bit) & 1 else 1.0
+                disc = b * b - 4.0 * a * c
+                tol = _DISC_RTOL * (b * b + 4.0 * numpy.abs(a * c))
+                sq = numpy.sqrt(numpy.where(disc > 0.0, disc, 0.0))
+                direct = sign * b <= 0.0
+                root = numpy.where(direct, (-b + sign * sq) / (2.0 * a),
+                                   (2.0 * c) / (-b - sign * sq))
+                new[numpy.abs(disc) <= tol] = ON_BOUNDARY
+                new[disc < -tol] = NO_REAL_SOLUTION
+                new[(~numpy.isfinite(root)) & (new != NO_REAL_SOLUTION)] = JOINT_AT_INFINITY
+            status = numpy.where(status == OK, new, status).astype(numpy.int8)
+            solved.append(root)
+    q = numpy.stack([numpy.broadcast_to(s, shape) for s in solved], axis=-1)
+    order = [JOINTS.index(name) for name in _SOLVE_ORDER]
+    out = numpy.empty_like(q)
+    out[..., order] = q
+    failed = (status != OK) & (status != ON_BOUNDARY)
+    out[failed] = numpy.nan
+    return out, status
+
+
+def ik(pose, mode=0, **params):
+    """Active joints ``JOINTS`` for poses ``(..., len(POSE))``; NaN where unreachable.
+
+    ``mode`` selects the working mode (see ``MODE_BITS``); ``ik_status`` says why a result is
+    NaN.  Geometric parameters are keyword arguments (defaults: ``PARAMETERS``).
+    """
+    q, _ = _solve(_pose("ik", pose), _mode("ik", mode), _params("ik", params))
+    return q
+
+
+def ik_status(pose, mode=0, **params):
+    """Status code per pose (``STATUS`` explains each code) for ``ik(pose, mode)``."""
+    _, status = _solve(_pose("ik_status", pose), _mode("ik_status", mode),
+                       _params("ik_status", params))
+    return status
+
+
+def ik_all(pose, **params):
+    """All working modes: array ``(..., MODES, len(JOINTS))``; NaN where a mode is unreachable."""
+    pose, par = _pose("ik_all", pose), _params("ik_all", params)
+    return numpy.stack([_solve(pose, m, par)[0] for m in range(MODES)], axis=-2)
+
+
+def _matrices(pose, q, par):
+    shape = pose.shape[:-1]
+    cols = [pose[..., i] for i in range(len(POSE))]
+    qc = [q[..., i] for i in range(len(JOINTS))]
+    n = len(JOINTS)
+
+    def mat(values, m):
+        vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape) for v in values]
+        return numpy.stack(vals, axis=-1).reshape(shape + (n, m))
+
+    return (mat(_ji(*cols, *qc, *par), n), mat(_jo(*cols, *qc, *par), len(POSE)),
+            mat(_jo_study(*cols, *qc, *par), len(STUDY_POSE)))
+
+
+def input_jacobian(pose, q, **params):
+    """``Ji = dG/dq`` (rows: ``IK_GENERATORS``, columns: ``JOINTS``), 004 eq. (19)-(21)."""
+    pose = _pose("input_jacobian", pose)
+    q = _joints("input_jacobian", q, pose.shape[:-1])
+    return _matrices(pose, q, _params("input_jacobian", params))[0]
+
+
+def output_jacobian(pose, q, **params):
+    """``Jo = dG/dy`` in the Study coordinates ``STUDY_POSE`` (004 eq. 19-21 form)."""
+    pose = _pose("output_jacobian", pose)
+    q = _joints("output_jacobian", q, pose.shape[:-1])
+    return _matrices(pose, q, _params("output_jacobian", params))[2]
+
+
+def jacobian(pose, mode=0, **params):
+    """``J = dq/dX`` (..., len(JOINTS), len(POSE)), X as listed in POSE; NaN where invalid.
+
+    ``J = -Ji^{-1} dG/dX``; NaN where the IK fails or ``det Ji`` vanishes (relative to the
+    product of the row norms of Ji), see ``jacobian_status``.
+    """
+    J, _ = _jacobian("jacobian", pose, mode, params)
+    return J
+
+
+def jacobian_status(pose, mode=0, **params):
+    """Status per pose for ``jacobian``: an IK status, or INPUT_SINGULAR."""
+    _, status = _jacobian("jacobian_status", pose, mode, params)
+    return status
+
+
+def _jacobian(func, pose, mode, params):
+    pose, mode, par = _pose(func, pose), _mode(func, mode), _params(func, params)
+    q, status = _solve(pose, mode, par)
+    ji, jo, _ = _matrices(pose, q, par)
+    with numpy.errstate(all="ignore"):
+        det = numpy.linalg.det(numpy.where(numpy.isfinite(ji), ji, 0.0))
+        scale = numpy.prod(numpy.linalg.norm(ji, axis=-1), axis=-1)
+        singular = ~(numpy.abs(det) > _DET_RTOL * scale)
+    status = numpy.where((status == OK) & singular, INPUT_SINGULAR, status).astype(numpy.int8)
+    status = numpy.where(status == ON_BOUNDARY, INPUT_SINGULAR, status).astype(numpy.int8)
+    bad = status != OK
+    eye = numpy.eye(len(JOINTS))
+    safe = numpy.where(bad[..., None, None], eye, ji)
+    safe_jo = numpy.where(bad[..., None, None], 0.0, jo)
+    J = -numpy.linalg.solve(safe, safe_jo)
+    J[bad] = numpy.nan
+    return J, status
+
+
+def singularities(pose, q, **params):
+    """Singularity polynomials evaluated at ``(pose, q)``: dict name -> array (zero = singular).
+
+    ``SINGULARITY_MEANING`` says what each one is.
+    """
+    pose = _pose("singularities", pose)
+    shape = pose.shape[:-1]
+    q = _joints("singularities", q, shape)
+    par = _params("singularities", params)
+    cols = [pose[..., i] for i in range(len(POSE))]
+    qc = [q[..., i] for i in range(len(JOINTS))]
+    return {name: numpy.broadcast_to(numpy.asarray(kern(*cols, *qc, *par)[0], dtype=float),
+                                     shape)
+            for name, kern in _SINGULARITIES.items()}
+'''

@@ -1,0 +1,1 @@
+"""Groebner elimination of passive joint variables: problems, engines, cache."""

@@ -1,0 +1,215 @@
+"""Groebner engines behind one interface: sympy (always there) and Singular (the default).
+
+Singular is GPL software and is driven as a separate program over a pipe (no linking), so the
+BSD-licensed package stays free of GPL code.  Every call has a time budget; running out gives
+:class:`EngineTimeoutError` naming the mechanism and step.
+
+Both engines return the *reduced* Groebner basis of the elimination ideal in grevlex on the kept
+variables; after :func:`polyterms.normal_basis` the two answers are identical, which
+``tests/test_engines_agree.py`` checks.
+"""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import os
+import shutil
+import subprocess
+import time
+from abc import ABC, abstractmethod
+from fractions import Fraction
+
+import sympy as sp
+from sympy.polys.orderings import ProductOrder, grevlex
+
+from ..errors import EngineError, EngineTimeoutError, EngineUnavailableError
+from . import polyterms as pt
+from .problem import EliminationProblem
+
+DEFAULT_BUDGET_S = 600.0
+
+
+class Engine(ABC):
+    """A Groebner engine: computes the normalized reduced basis of an elimination ideal."""
+
+    name: str
+
+    @abstractmethod
+    def available(self) -> bool: ...
+
+    @abstractmethod
+    def version(self) -> str: ...
+
+    @abstractmethod
+    def _eliminate(self, problem: EliminationProblem, budget_s: float) -> list[list[pt.Term]]:
+        """Raw reduced basis of the elimination ideal in grevlex on ``problem.keep``."""
+
+    def eliminate(self, problem: EliminationProblem, budget_s: float = DEFAULT_BUDGET_S):
+        """Normalized reduced basis; raises EngineUnavailableError / EngineTimeoutError."""
+        if not self.available():
+            raise EngineUnavailableError(
+                f"{problem.context}: the {self.name} Groebner engine is not installed"
+                + (" (Debian package 'singular')" if self.name == "singular" else "")
+            )
+        return pt.normal_basis(self._eliminate(problem, budget_s))
+
+
+# --------------------------------------------------------------------------- sympy
+
+
+def _sympy_worker(problem: EliminationProblem, queue) -> None:  # pragma: no cover - child
+    try:
+        queue.put(("ok", _sympy_basis(problem)))
+    except Exception as exc:  # noqa: BLE001 - reported to the parent verbatim
+        queue.put(("error", f"{type(exc).__name__}: {exc}"))
+
+
+def _sympy_basis(problem: EliminationProblem) -> list[list[pt.Term]]:
+    ne = len(problem.eliminate)
+    gens = problem.gens
+    order = ProductOrder((grevlex, lambda m: m[:ne]), (grevlex, lambda m: m[ne:]))
+    g = sp.groebner(list(problem.equations), *gens, order=order, domain=sp.QQ)
+    kept = [p for p in g.exprs if not (p.free_symbols & set(problem.eliminate))]
+    if not kept:
+        return []
+    red = sp.groebner(kept, *problem.keep, order="grevlex", domain=sp.QQ)
+    return [
+        [(e, Fraction(int(c.numerator), int(c.denominator))) for e, c in
+         sp.Poly(p, *problem.keep, domain=sp.QQ).terms()]
+        for p in red.exprs
+    ]
+
+
+class SympyEngine(Engine):
+    """sympy's Buchberger/F5B with a block (product) order; slow but always installed."""
+
+    name = "sympy"
+
+    def available(self) -> bool:
+        return True
+
+    def version(self) -> str:
+        return f"sympy {sp.__version__}"
+
+    def _eliminate(self, problem, budget_s):
+        ctx = mp.get_context("fork")
+        queue = ctx.Queue()
+        proc = ctx.Process(target=_sympy_worker, args=(problem, queue), daemon=True)
+        proc.start()
+        try:
+            status, payload = queue.get(timeout=budget_s)
+        except Exception:  # queue.Empty
+            proc.kill()
+            proc.join()
+            raise EngineTimeoutError(self.name, problem.context, budget_s) from None
+        proc.join()
+        if status != "ok":
+            raise EngineError(f"{problem.context}: sympy failed: {payload}")
+        return payload
+
+
+# --------------------------------------------------------------------------- Singular
+
+
+def _singular_poly(terms: pt.PolyTerms, names: list[str]) -> str:
+    out = []
+    for e, c in terms:
+        mono = "*".join(f"{n}^{k}" for n, k in zip(names, e) if k)
+        coef = f"({c.numerator}/{c.denominator})" if c.denominator != 1 else f"({c.numerator})"
+        out.append(f"{coef}*{mono}" if mono else coef)
+    return "+".join(out) if out else "0"
+
+
+class SingularEngine(Engine):
+    """Singular (``std``/``eliminate`` over Q), run as a separate program."""
+
+    name = "singular"
+
+    def __init__(self, executable: str | None = None):
+        self.executable = executable or os.environ.get("BONERED_SINGULAR", "Singular")
+
+    def _path(self) -> str | None:
+        return shutil.which(self.executable)
+
+    def available(self) -> bool:
+        return self._path() is not None
+
+    def version(self) -> str:
+        out = subprocess.run([self._path(), "-v", "-q", "--no-rc"], input="quit;",
+                             capture_output=True, text=True, timeout=30)
+        first = (out.stdout or out.stderr).strip().splitlines()
+        return first[0] if first else "Singular (unknown version)"
+
+    def script(self, problem: EliminationProblem) -> str:
+        ne, nk = len(problem.eliminate), len(problem.keep)
+        names = [f"e{i}" for i in range(ne)] + [f"k{i}" for i in range(nk)]
+        keep_names = names[ne:]
+        eqs = ",\n".join(_singular_poly(t, names) for t in problem.equation_terms())
+        elim = "*".join(names[:ne]) if ne else "1"
+        return f"""option(redSB); option(redTail);
+ring r = 0, ({",".join(names)}), dp;
+ideal I = {eqs};
+ideal E = eliminate(I, {elim});
+ring s = 0, ({",".join(keep_names)}), dp;
+ideal E = imap(r, E);
+E = std(E);
+int i; poly g;
+for (i = 1; i <= ncols(E); i++) {{
+  g = E[i];
+  while (g != 0) {{
+    print("T " + string(leadexp(g)) + " " + string(leadcoef(g)));
+    g = g - lead(g);
+  }}
+  print("END");
+}}
+print("DONE");
+quit;
+"""
+
+    def _eliminate(self, problem, budget_s):
+        try:
+            out = subprocess.run([self._path(), "-q", "--no-rc", "--no-warn"],
+                                 input=self.script(problem), capture_output=True, text=True,
+                                 timeout=budget_s)
+        except subprocess.TimeoutExpired:
+            raise EngineTimeoutError(self.name, problem.context, budget_s) from None
+        lines = out.stdout.splitlines()
+        if out.returncode != 0 or "DONE" not in lines:
+            raise EngineError(
+                f"{problem.context}: Singular failed (exit {out.returncode}): "
+                f"{(out.stderr or out.stdout)[-2000:]}"
+            )
+        polys: list[list[pt.Term]] = []
+        current: list[pt.Term] = []
+        for line in lines:
+            if line.startswith("T "):
+                _, exps, coef = line.split(" ")
+                current.append((tuple(int(x) for x in exps.split(",")), pt.parse_rational(coef)))
+            elif line == "END":
+                polys.append(current)
+                current = []
+        return polys
+
+
+ENGINES: dict[str, type[Engine]] = {"sympy": SympyEngine, "singular": SingularEngine}
+
+
+def get_engine(name: str | None = None) -> Engine:
+    """The named engine, or ``$BONERED_ENGINE``, or Singular when installed, else sympy."""
+    name = name or os.environ.get("BONERED_ENGINE")
+    if name is None:
+        singular = SingularEngine()
+        return singular if singular.available() else SympyEngine()
+    try:
+        return ENGINES[name]()
+    except KeyError:
+        raise EngineUnavailableError(
+            f"unknown Groebner engine {name!r}; expected one of {sorted(ENGINES)}"
+        ) from None
+
+
+def timed_eliminate(engine: Engine, problem: EliminationProblem, budget_s: float):
+    """(basis, seconds) for one engine call."""
+    t0 = time.perf_counter()
+    basis = engine.eliminate(problem, budget_s)
+    return basis, time.perf_counter() - t0

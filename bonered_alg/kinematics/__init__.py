@@ -1,0 +1,1 @@
+"""Inverse kinematics plans, Jacobians and singularity polynomials from constraint ideals."""

@@ -1,0 +1,81 @@
+"""Inverse kinematics by back-substitution through generators of the constraint ideal.
+
+For each active joint ``q`` we pick a generator ``g`` of the elimination ideal whose only
+unknown joints are ``q`` and joints already solved, and which has degree 1 or 2 in ``q``; then
+``g = A q^2 + B q + C`` (or ``B q + C``) is solved in closed form.  The two roots of each
+quadratic step are the working modes of that step (004 Sect. 3.4).  When no generator of
+degree <= 2 exists we stop with ``NotImplementedError`` rather than guess.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import sympy as sp
+
+
+@dataclass(frozen=True)
+class IKStep:
+    """Solve ``generator`` (``A q^2 + B q + C`` or ``B q + C``) for ``joint``."""
+
+    joint: sp.Symbol
+    generator: sp.Expr
+    degree: int
+    A: sp.Expr
+    B: sp.Expr
+    C: sp.Expr
+    source: str  # which ideal/leg the generator comes from
+
+    @property
+    def branches(self) -> int:
+        return 2 if self.degree == 2 else 1
+
+    def roots(self) -> list[sp.Expr]:
+        """Symbolic roots; the first uses ``+sqrt`` (mode bit 0), the second ``-sqrt``."""
+        if self.degree == 1:
+            return [-self.C / self.B]
+        disc = self.B**2 - 4 * self.A * self.C
+        return [(-self.B + s * sp.sqrt(disc)) / (2 * self.A) for s in (1, -1)]
+
+
+def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
+         context: str) -> list[IKStep]:
+    """Order of solution and the generator used for each joint (see module docstring)."""
+    solved: list[sp.Symbol] = []
+    steps: list[IKStep] = []
+    remaining = list(joints)
+    jset = set(joints)
+    while remaining:
+        best = None
+        for q in remaining:
+            for src, g in generators:
+                unknown = (g.free_symbols & jset) - set(solved)
+                if unknown != {q}:
+                    continue
+                deg = sp.degree(g, q)
+                if deg not in (1, 2):
+                    continue
+                cand = (deg, sp.count_ops(g), str(q), src, q, g)
+                if best is None or cand[:3] < best[:3]:
+                    best = cand
+        if best is None:
+            raise NotImplementedError(
+                f"{context}: no generator of degree 1 or 2 in any of "
+                f"{[str(q) for q in remaining]} once {[str(q) for q in solved]} are known")
+        deg, _, _, src, q, g = best
+        poly = sp.Poly(sp.expand(g), q)
+        coeff = {m[0]: c for m, c in zip(poly.monoms(), poly.coeffs())}
+        steps.append(IKStep(q, g, deg, sp.factor(coeff.get(2, 0)), sp.factor(coeff.get(1, 0)),
+                            sp.factor(coeff.get(0, 0)), src))
+        solved.append(q)
+        remaining.remove(q)
+    return steps
+
+
+def mode_count(steps: Sequence[IKStep]) -> int:
+    """Number of working modes: the product of the branch counts."""
+    n = 1
+    for s in steps:
+        n *= s.branches
+    return n

@@ -1,0 +1,221 @@
+"""The derivation pipeline: mechanism -> elimination -> IK/Jacobians/singularities -> files.
+
+:func:`derive` computes everything in memory; :func:`write` then writes
+``generated/<name>.py``, ``derivations/<name>.tex`` and ``derivations/<name>.verification.json``
+atomically, only after every step has succeeded, so a failing derivation leaves both folders
+untouched.  :func:`derive_all` skips a mechanism whose outputs already carry its current
+derivation hash.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import ModuleType
+
+import sympy as sp
+
+from . import __version__
+from .chains.joints import Leg
+from .chains.mechanism import Closure, Mechanism
+from .codegen.ik_module import IKModuleSpec, write_ik_module
+from .elimination.cache import eliminate
+from .elimination.closure import leg_problem
+from .elimination.engines import DEFAULT_BUDGET_S, Engine, get_engine
+from .elimination.problem import EliminationProblem, EliminationResult
+from .errors import NonClosingMechanismError
+from .fileio import atomic_write_text
+from .kinematics.ik_plan import IKStep, mode_count, plan
+from .kinematics.singularities import FactoredPolynomial, discriminant, factored
+from .mechanisms import REGISTRY, load
+from .verification import Verdict, algebra_verdicts
+
+PACKAGE_DIR = Path(__file__).resolve().parent
+GENERATOR = f"bonered_alg {__version__}"
+
+
+@dataclass
+class LegResult:
+    """One leg: its chain product, closure equations and elimination result."""
+
+    closure: Closure
+    leg: Leg
+    product: tuple[sp.Expr, ...]
+    problem: EliminationProblem
+    result: EliminationResult
+
+
+@dataclass
+class Derivation:
+    """Everything derived for one mechanism (symbolic; nothing written yet)."""
+
+    mechanism: Mechanism
+    module: ModuleType
+    derivation_hash: str
+    legs: list[LegResult]
+    steps: list[IKStep]
+    singularities: list[FactoredPolynomial]
+    verification: list[Verdict] = field(default_factory=list)
+    timings: dict[str, float] = field(default_factory=dict)
+
+    def leg(self, name: str) -> LegResult:
+        return next(r for r in self.legs if r.leg.name == name)
+
+    @property
+    def modes(self) -> int:
+        return mode_count(self.steps)
+
+
+def derivation_hash(name: str, package_dir: Path = PACKAGE_DIR,
+                    module_file: str | None = None) -> str:
+    """SHA-256 of every source file that shapes ``name``'s outputs (engine excluded).
+
+    That is the whole package except the command line and the *other* mechanism modules, so
+    editing one mechanism re-derives only that one.  The engine is excluded on purpose: both
+    engines return the same normalized basis (``tests/test_engines_agree.py``).
+    ``module_file`` adds a mechanism module that lives outside the package.
+    """
+    h = hashlib.sha256(f"{GENERATOR}\n".encode())
+    if module_file and not Path(module_file).resolve().is_relative_to(package_dir):
+        h.update(Path(module_file).read_bytes())
+    for path in sorted(package_dir.rglob("*.py")):
+        rel = path.relative_to(package_dir).as_posix()
+        if rel.startswith("mechanisms/") and rel not in ("mechanisms/__init__.py",
+                                                          f"mechanisms/{name}.py"):
+            continue
+        if rel in ("cli.py",):
+            continue
+        h.update(rel.encode() + b"\0" + path.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+def _singularities(mech: Mechanism, steps: list[IKStep]) -> list[FactoredPolynomial]:
+    out = []
+    for closure in mech.closures:
+        syms = set().union(*(leg.free_symbols for leg in closure.legs),
+                           *(c.equation.free_symbols for c in closure.couplings))
+        csteps = [s for s in steps if s.joint in syms]
+        if not csteps:
+            continue
+        gens = sp.Matrix([s.generator for s in csteps])
+        joints = sp.Matrix([s.joint for s in csteps])
+        pose = [p for p in closure.pose if any(p in s.generator.free_symbols for s in csteps)]
+        ji = gens.jacobian(joints)
+        jo = gens.jacobian(sp.Matrix(pose))
+        out.append(factored(f"det_Ji_{closure.point}", ji.det(method="berkowitz"),
+                            f"input singularity of the {closure.name}: det dG/d("
+                            + ", ".join(map(str, joints)) + ")"))
+        if jo.shape[0] == jo.shape[1]:
+            out.append(factored(f"det_Jo_{closure.point}", jo.det(method="berkowitz"),
+                                f"output singularity of the {closure.name}: det dG/d("
+                                + ", ".join(map(str, pose)) + ")"))
+        for s in csteps:
+            if s.degree == 2:
+                out.append(factored(
+                    f"boundary_{s.joint}", discriminant(s.generator, s.joint),
+                    f"discriminant of the generator in {s.joint}: the boundary of the "
+                    f"reach of the leg driven by {s.joint} (two working modes merge)"))
+    return out
+
+
+def derive(name: str | ModuleType, engine: Engine | None = None,
+           budget_s: float = DEFAULT_BUDGET_S, use_cache: bool = True) -> Derivation:
+    """Derive a mechanism (registered name, or a mechanism module) completely, in memory."""
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    module = load(name) if isinstance(name, str) else name
+    name = module.NAME
+    mech = module.build()
+    mech.validate()
+    engine = engine or get_engine()
+    legs: list[LegResult] = []
+    for closure in mech.closures:
+        for leg in closure.legs:
+            problem = leg_problem(mech, closure, leg)
+            result = eliminate(problem, engine, budget_s, use_cache)
+            if result.is_unit_ideal:
+                raise NonClosingMechanismError(
+                    mech.name, f"leg {leg.name!r} cannot close on the platform point "
+                    f"{closure.point} of the {closure.name}: its elimination ideal is <1> "
+                    "(no pose satisfies the closure equations)")
+            timings[f"eliminate {leg.name} ({engine.name})"] = result.seconds
+            legs.append(LegResult(closure, leg, leg.product(), problem, result))
+    pool = [(f"{r.closure.point}/{r.leg.name}", g) for r in legs for g in r.result.generators]
+    t1 = time.perf_counter()
+    steps = plan(pool, module.JOINTS, f"mechanism {mech.name!r}: inverse kinematics")
+    sing = _singularities(mech, steps)
+    timings["ik plan, Jacobians, singularities"] = time.perf_counter() - t1
+    dhash = derivation_hash(name, module_file=module.__file__)
+    d = Derivation(mech, module, dhash, legs, steps, sing, timings=timings)
+    t2 = time.perf_counter()
+    d.verification = algebra_verdicts() + module.verify(d)
+    timings["verification"] = time.perf_counter() - t2
+    timings["total"] = time.perf_counter() - t0
+    return d
+
+
+def ik_module_source(d: Derivation) -> str:
+    m = d.module
+    spec = IKModuleSpec(
+        name=d.mechanism.name, title=d.mechanism.title, source=d.mechanism.source,
+        derivation_hash=d.derivation_hash, generator=GENERATOR,
+        parameters=list(d.mechanism.parameters.values()), pose=m.POSE,
+        pose_units=m.POSE_UNITS, pose_to_study=m.POSE_TO_STUDY, joints=m.JOINTS,
+        joint_units=m.JOINT_UNITS, steps=d.steps,
+        singularities=[(s.name, s.expression, s.meaning) for s in d.singularities])
+    return write_ik_module(spec)
+
+
+def verification_json(d: Derivation) -> str:
+    return json.dumps([v.as_json() for v in d.verification], indent=2, sort_keys=True) + "\n"
+
+
+def write(d: Derivation, root: Path) -> list[Path]:
+    """Render every output first, then write them atomically; returns the changed files."""
+    from .report.latex_report import render_report
+
+    outputs = {
+        root / "generated" / f"{d.mechanism.name}.py": ik_module_source(d),
+        root / "derivations" / f"{d.mechanism.name}.tex": render_report(d),
+        root / "derivations" / f"{d.mechanism.name}.verification.json": verification_json(d),
+    }
+    return [p for p, text in outputs.items() if atomic_write_text(p, text)]
+
+
+_HASH_RE = re.compile(r"^DERIVATION_HASH = '([0-9a-f]{64})'$", re.M)
+
+
+def recorded_hash(root: Path, name: str) -> str | None:
+    """The derivation hash recorded in ``generated/<name>.py`` and the report, if they agree."""
+    gen = root / "generated" / f"{name}.py"
+    tex = root / "derivations" / f"{name}.tex"
+    js = root / "derivations" / f"{name}.verification.json"
+    if not (gen.is_file() and tex.is_file() and js.is_file()):
+        return None
+    m = _HASH_RE.search(gen.read_text())
+    if not m or m.group(1) not in tex.read_text():
+        return None
+    return m.group(1)
+
+
+def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
+               engine: Engine | None = None, log=print) -> dict[str, str]:
+    """Derive and write each mechanism whose outputs are missing or out of date."""
+    status = {}
+    for name in names or list(REGISTRY):
+        current = derivation_hash(name)
+        if not force and recorded_hash(root, name) == current:
+            log(f"{name}: up to date ({current[:12]})")
+            status[name] = "up to date"
+            continue
+        t0 = time.perf_counter()
+        d = derive(name, engine=engine)
+        changed = write(d, root)
+        log(f"{name}: derived in {time.perf_counter() - t0:.1f} s; wrote "
+            + (", ".join(str(p.relative_to(root)) for p in changed) or "nothing new"))
+        status[name] = "derived"
+    return status

@@ -1,0 +1,211 @@
+"""The LaTeX derivation report ``derivations/<name>.tex`` (DESIGN.md section 5).
+
+Every step a reviewer needs: parameters, topology, chain tables, chain products, closure
+equations, elimination results, IK, Jacobians, singularities, and the verification section
+with one row per printed equation or table row.  The text is deterministic (no dates, no
+timings: those go to the benchmark results).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from ..codegen.kernels import kernel
+from .latex_util import broken_math, latex, tex_escape, texttt
+
+PREAMBLE = r"""\documentclass[10pt,a4paper]{article}
+\usepackage[margin=2cm]{geometry}
+\usepackage{amsmath,amssymb}
+\usepackage{booktabs,longtable}
+\allowdisplaybreaks
+\setlength{\parindent}{0pt}
+\setlength{\parskip}{4pt}
+"""
+
+VERDICT_TEX = {"confirmed-symbolic": "confirmed (symbolic)", "confirmed-numeric":
+               "confirmed (numeric)", "erratum": r"\textbf{erratum}",
+               "not-checkable": "not checkable"}
+
+
+def _study(point) -> str:
+    return "[" + ":".join(latex(c) for c in point) + "]"
+
+
+def _section_mechanism(d) -> list[str]:
+    m = d.mechanism
+    out = [r"\section{Mechanism}", tex_escape(m.module_doc if hasattr(m, "module_doc") else ""),
+           f"Source: {tex_escape(m.source)}.", "",
+           r"\subsection{Geometric parameters}",
+           r"\begin{longtable}{llp{0.45\textwidth}p{0.22\textwidth}}\toprule",
+           r"name & value & meaning & value source\\\midrule"]
+    for p in m.parameters.values():
+        val = "---" if p.value is None else f"{p.value:g} {tex_escape(p.unit)}"
+        out.append(f"${latex(sp.Symbol(p.name))}$ & {val} & {tex_escape(p.description)} & "
+                   f"{tex_escape(p.source)}\\\\")
+    out += [r"\bottomrule\end{longtable}", r"\subsection{Topology}",
+            "Bodies and joints (a networkx multigraph):", r"\begin{itemize}"]
+    for a, b, data in sorted(m.topology.edges(data=True), key=lambda e: (e[2]["label"], e[0])):
+        label = tex_escape(data['label'])
+        out.append(rf"\item {tex_escape(data['joint'])} joint \texttt{{{label}}}"
+                   f" between {tex_escape(a)} and {tex_escape(b)}")
+    out.append(r"\end{itemize}")
+    loops = "; ".join("(" + ", ".join(loop) + ")" for loop in m.loops())
+    out.append(f"Independent loops (cycle basis): {tex_escape(loops)}.")
+    n = m.topology.number_of_nodes()
+    j = m.topology.number_of_edges()
+    lam = 3 if m.planar else 6
+    out.append(
+        rf"Kutzbach--Gr\"ubler mobility: $M = {lam}(n-1-j) + \sum f_i - c = {lam}({n}-1-{j}) + "
+        rf"\sum f_i - {m.extra_constraints} = {m.mobility()}$, where $c = {m.extra_constraints}$ "
+        f"counts {tex_escape(m.extra_constraints_note)}; the active joints are "
+        + ", ".join(f"${latex(q)}$" for q in m.active) + ".")
+    return out
+
+
+def _section_chains(d) -> list[str]:
+    out = [r"\section{Chains of Study-parameter factors}",
+           r"Convention (bonered\_alg.algebra.convention): $[x_0:x_1:x_2:x_3:y_0:y_1:y_2:y_3]$, "
+           r"$y = -\tfrac12 t\,x$; a rotation by $\varphi$ about an axis is "
+           r"$[1:u\,e:0:0:0:0]$ with $u = \tan(\varphi/2)$, a translation by $s$ along an axis "
+           r"is $[1:0:0:0:0:-\tfrac{s}{2}e]$. The product of study points is the dual "
+           "quaternion product and is a homomorphism of the matrix product, so each chain is "
+           "read base to platform."]
+    for r in d.legs:
+        out += [rf"\subsection{{Leg {tex_escape(r.leg.name)} ({tex_escape(r.closure.name)}, "
+                rf"point {tex_escape(r.closure.point)})}}",
+                r"\begin{longtable}{lp{0.36\textwidth}lp{0.33\textwidth}}\toprule",
+                r"symbol & factor & role & description\\\midrule"]
+        for f in r.leg.factors:
+            out.append(f"{tex_escape(f.label)} & ${_study(f.study())}$ & {f.role.value} & "
+                       f"{tex_escape(f.motion())}; {tex_escape(f.description)}\\\\")
+        out.append(r"\bottomrule\end{longtable}")
+        out.append("Chain product (expanded):")
+        names = ["x_0", "x_1", "x_2", "x_3", "y_0", "y_1", "y_2", "y_3"]
+        for nm, c in zip(names, r.product):
+            if c != 0:
+                out.append(broken_math(nm, sp.expand(c)))
+        zeros = [nm for nm, c in zip(names, r.product) if c == 0]
+        if zeros:
+            out.append("and $" + " = ".join(zeros) + " = 0$.")
+    return out
+
+
+def _section_elimination(d) -> list[str]:
+    out = [r"\section{Closure equations and elimination}",
+           "A leg closes on the platform when its chain product $C$ and the platform's Study "
+           r"point $X$ are the same projective point. With the normalization $X_p = 1$ "
+           r"the closure equations are $C_k - C_p X_k = 0$ ($k \neq p$) together with "
+           r"$1 - \mu\, C_p = 0$, which excludes $C_p = 0$ (saturation). The passive joint "
+           r"variables and $\mu$ are eliminated by a Groebner basis for an elimination order; "
+           "the result is the reduced Groebner basis of the elimination ideal in the "
+           "degree-reverse-lexicographic order on the kept variables, made primitive over the "
+           "integers with a positive leading coefficient, so it is unique and both engines "
+           "return it identically."]
+    for r in d.legs:
+        p = r.problem
+        out += [rf"\subsection{{Leg {tex_escape(r.leg.name)}}}",
+                f"Platform point ${tex_escape(r.closure.point)} = {_study(r.closure.platform)}$. "
+                + tex_escape(r.closure.note),
+                f"Closure equations ({len(p.equations)}):"]
+        for k, e in enumerate(p.equations, 1):
+            out.append(broken_math(f"e_{{{k}}}", e))
+        out += [
+            "Eliminated: " + ", ".join(f"${latex(s)}$" for s in p.eliminate)
+            + "; kept (in this order): " + ", ".join(f"${latex(s)}$" for s in p.keep) + ".",
+            f"Result: {len(r.result.generators)} generator(s); Hilbert (Krull) dimension "
+            f"{r.result.dimension} in {len(p.keep)} variables."]
+        for k, g in enumerate(r.result.generators, 1):
+            out.append(broken_math(f"g_{{{k}}}", g))
+    return out
+
+
+def _section_ik(d) -> list[str]:
+    out = [r"\section{Inverse kinematics}",
+           "Each active joint is solved from a generator of the ideals above whose only "
+           "unknown joint is that one (back-substitution). A quadratic "
+           r"$A q^2 + B q + C = 0$ has the roots $q = (-B \pm \sqrt{B^2-4AC})/(2A)$; "
+           r"the sign is the working mode of that step ($+$: mode bit 0). "
+           f"Number of working modes: {d.modes}. Pose coordinates: "
+           + ", ".join(f"${latex(k)} = {latex(v)}$" for k, v in d.module.POSE_TO_STUDY.items())
+           + " (004 eq. 13 with $x = [1:0:0:0]$)."]
+    for s in d.steps:
+        out.append(rf"\paragraph{{Joint ${latex(s.joint)}$}} from {tex_escape(s.source)}, "
+                   f"degree {s.degree}:")
+        if s.degree == 2:
+            out.append(broken_math("A", s.A))
+        out.append(broken_math("B", s.B))
+        out.append(broken_math("C", s.C))
+    return out
+
+
+def _section_velocity(d) -> list[str]:
+    out = [r"\section{Velocity model and singularities}",
+           r"With the IK generators $G$ (one per active joint), $J_i \dot q + J_o \dot X = 0$ "
+           r"with $J_i = \partial G/\partial q$ and $J_o = \partial G/\partial X$ (004 eq. "
+           r"19--21), so $\partial q/\partial X = -J_i^{-1} J_o$. The generated module "
+           "evaluates both matrices and the solve, and returns NaN with a status where "
+           r"$\det J_i$ vanishes."]
+    for s in d.singularities:
+        out.append(rf"\paragraph{{{tex_escape(s.name)}}} {tex_escape(s.meaning)}. "
+                   f"Constant factor ${latex(s.constant)}$, irreducible factors:")
+        for k, (f, mult) in enumerate(s.factors, 1):
+            out.append(broken_math(f"f_{{{k}}}" + (f"^{{{mult}}}" if mult > 1 else ""), f))
+        if not s.factors:
+            out.append("(none: never singular).")
+        notes = getattr(d.module, "SINGULARITY_NOTES", {})
+        if s.name in notes:
+            out.append(tex_escape(notes[s.name]))
+    return out
+
+
+def _section_verification(d) -> list[str]:
+    out = [r"\section{Verification against the paper}",
+           "One row per printed equation or table row. Verdicts: confirmed symbolically "
+           "(identity proven by computer algebra), confirmed numerically (max error given), "
+           "erratum (the printed form disagrees with the derivation; the corrected form and "
+           "the evidence follow), not checkable (an input or a definition).",
+           r"\begin{longtable}{p{0.17\textwidth}p{0.2\textwidth}p{0.13\textwidth}"
+           r"p{0.4\textwidth}}\toprule",
+           r"reference & quantity & verdict & detail\\\midrule\endhead"]
+    for v in d.verification:
+        err = "" if v.max_error is None else f" (max error {v.max_error:.2e})"
+        out.append(f"{tex_escape(v.ref)} & {tex_escape(v.quantity)} & "
+                   f"{VERDICT_TEX[v.verdict]}{err} & {texttt(v.detail)}\\\\")
+    out.append(r"\bottomrule\end{longtable}")
+    errata = [v for v in d.verification if v.verdict == "erratum" and v.evidence]
+    if errata:
+        out.append(r"\subsection{Evidence for the errata}")
+        for v in errata:
+            out.append(rf"\paragraph{{{tex_escape(v.ref)}}} printed minus derived "
+                       "(or the stated residual):")
+            out.append(r"\begin{align*}&" + v.evidence.replace("&", r"\&") + r"\end{align*}")
+    return out
+
+
+def _section_interpretation(d) -> list[str]:
+    doc = d.module.__doc__ or ""
+    bullets = [b.strip().replace("\n", " ") for b in doc.split("\n* ")[1:]]
+    if not bullets:
+        return []
+    out = [r"\section{Reading of the source text}", r"\begin{itemize}"]
+    out += [rf"\item {tex_escape(' '.join(b.split()))}" for b in bullets]
+    out.append(r"\end{itemize}")
+    return out
+
+
+def render_report(d) -> str:
+    """The complete ``.tex`` source."""
+    m = d.mechanism
+    ops = sum(kernel("_k", list(s.generator.free_symbols), [s.A, s.B, s.C], "").operations
+              for s in d.steps)
+    body = [PREAMBLE, r"\title{" + tex_escape(m.title) + r": derivation report}",
+            r"\author{bonered\_alg (generated by \texttt{make derive})}", r"\date{}",
+            r"\begin{document}", r"\maketitle",
+            f"Derivation hash: \\texttt{{{d.derivation_hash}}}. Generated module: "
+            f"\\texttt{{generated/{tex_escape(m.name)}.py}} (IK kernels: {ops} operations "
+            "after common-subexpression elimination).", ""]
+    for part in (_section_mechanism, _section_chains, _section_elimination, _section_ik,
+                 _section_velocity, _section_verification, _section_interpretation):
+        body += part(d)
+    body.append(r"\end{document}")
+    return "\n".join(body) + "\n"
