@@ -1,0 +1,50 @@
+"""generated/ and derivations/ are up to date with the code, deterministic, and incremental."""
+
+import shutil
+import subprocess
+import sys
+
+from bonered_alg.pipeline import (
+    derivation_hash,
+    ik_module_source,
+    recorded_hash,
+    verification_json,
+)
+from bonered_alg.report.latex_report import render_report
+from tests.conftest import ROOT
+
+
+def test_committed_outputs_carry_current_hash():
+    assert recorded_hash(ROOT, "pro_hep_lct") == derivation_hash("pro_hep_lct")
+
+
+def test_rederivation_is_byte_identical(derivation):
+    assert ik_module_source(derivation) == (ROOT / "generated/pro_hep_lct.py").read_text()
+    assert render_report(derivation) == (ROOT / "derivations/pro_hep_lct.tex").read_text()
+    assert verification_json(derivation) == (
+        ROOT / "derivations/pro_hep_lct.verification.json").read_text()
+
+
+def test_second_derive_changes_nothing(tmp_path):
+    for folder in ("generated", "derivations"):
+        shutil.copytree(ROOT / folder, tmp_path / folder)
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    out = subprocess.run([sys.executable, "-m", "bonered_alg.cli", "derive", "--root",
+                          str(tmp_path)], capture_output=True, text=True, cwd=ROOT)
+    assert out.returncode == 0, out.stderr
+    assert "pro_hep_lct: up to date" in out.stdout
+    after = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    assert after == before
+
+
+def test_hash_covers_only_the_mechanism_and_the_core(tmp_path):
+    pkg = tmp_path / "bonered_alg"
+    shutil.copytree(ROOT / "bonered_alg", pkg, ignore=shutil.ignore_patterns("__pycache__"))
+    (pkg / "mechanisms" / "other.py").write_text("X = 1\n")
+    h_pro, h_other = derivation_hash("pro_hep_lct", pkg), derivation_hash("other", pkg)
+    (pkg / "mechanisms" / "other.py").write_text("X = 2\n")
+    assert derivation_hash("pro_hep_lct", pkg) == h_pro
+    assert derivation_hash("other", pkg) != h_other
+    (pkg / "algebra" / "convention.py").write_text(
+        (pkg / "algebra" / "convention.py").read_text() + "\n# changed\n")
+    assert derivation_hash("pro_hep_lct", pkg) != h_pro
