@@ -1,0 +1,177 @@
+"""Benchmarks (`make bench`): derivation steps per engine, incremental derive, and throughput
+of the generated functions against a plain ``sympy.lambdify`` of the same expressions.
+
+Results go to the JSON file given by ``--out``; medians of repeated runs, measured in one
+process on a shared machine (treat ratios as the meaningful numbers).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+
+from bonered_alg.generated import pro_hep_lct as gen  # noqa: E402
+from independent_pro_hep_lct import GEOMETRY  # noqa: E402
+
+from bonered_alg.elimination.closure import leg_problem  # noqa: E402
+from bonered_alg.elimination.engines import (  # noqa: E402
+    SingularEngine,
+    SympyEngine,
+)
+from bonered_alg.elimination.problem import EliminationProblem  # noqa: E402
+from bonered_alg.errors import EngineTimeoutError  # noqa: E402
+from bonered_alg.mechanisms import load  # noqa: E402
+from bonered_alg.pipeline import derive  # noqa: E402
+
+
+def median_time(fn, repeat):
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def elimination_benchmarks(sympy_budget):
+    mod = load("pro_hep_lct")
+    mech = mod.build()
+    numeric = {mod.l1: 180, mod.l2: 160, mod.d: 60, mod.l3: 170, mod.l4: 150, mod.lq4d: 250}
+    rows = []
+    for closure in mech.closures:
+        for leg in closure.legs:
+            p = leg_problem(mech, closure, leg)
+            variants = [("symbolic geometry", p)]
+            if closure.point == "Pd":
+                variants.append(("numeric geometry", EliminationProblem(
+                    p.context, tuple(sp.expand(e.subs(numeric)) for e in p.equations),
+                    p.eliminate, tuple(s for s in p.keep if s not in numeric))))
+            for label, prob in variants:
+                row = {"leg": leg.name, "geometry": label}
+                row["singular_s"] = median_time(lambda p=prob: SingularEngine().eliminate(p, 60), 5)
+                for method in SympyEngine.METHODS:
+                    eng = SympyEngine(method)
+                    try:
+                        row[f"sympy_{method}_s"] = median_time(
+                            lambda e=eng, p=prob: e.eliminate(p, sympy_budget), 1)
+                    except EngineTimeoutError:
+                        row[f"sympy_{method}_s"] = f"> {sympy_budget:g} (time budget exceeded)"
+                rows.append(row)
+                print(row, flush=True)
+    return rows
+
+
+def derive_benchmarks():
+    t_full = median_time(lambda: derive("pro_hep_lct", use_cache=False), 3)
+    cmd = [sys.executable, "-m", "bonered_alg.cli", "derive"]
+    t_noop = median_time(lambda: subprocess.run(cmd, cwd=ROOT, check=True,
+                                                capture_output=True), 3)
+    return {"full_derivation_no_cache_s": t_full, "derive_when_up_to_date_s": t_noop}
+
+
+def reachable_poses(n, rng):
+    g = GEOMETRY
+    th1 = rng.uniform(-1.0, 1.0, n)
+    th2 = rng.uniform(-2.4, -0.4, n)
+    xd = g["l1"] * np.cos(th1) + g["l2"] * np.cos(th1 + th2)
+    yd = g["l1"] * np.sin(th1) + g["l2"] * np.sin(th1 + th2) + g["d"] / 2
+    q5 = rng.uniform(100, 300, n)
+    q4 = q5 - rng.uniform(20, 180, n)
+    xu = g["lq5"] + np.sqrt(g["ld4"] ** 2 - (q5 - q4) ** 2)
+    return np.stack([xu, q5, xd, yd], axis=-1)
+
+
+def lambdify_baseline(derivation):
+    """Plain sympy.lambdify of the same mode-0 IK roots and of -Ji^{-1} Jo."""
+    mod = derivation.module
+    par = [sp.Symbol(k, real=True) for k in mod.PARAMETERS]
+    sub = dict(mod.POSE_TO_STUDY)
+    solved = {}
+    for step in derivation.steps:
+        solved[step.joint] = step.roots()[0].subs(sub).subs(solved)
+    q_exprs = [solved[j] for j in mod.JOINTS]
+    ik = sp.lambdify([*mod.POSE, *par], q_exprs, modules="numpy")
+    gens = sp.Matrix([sp.expand(s.generator).subs(sub) for s in derivation.steps])
+    ji = sp.lambdify([*mod.POSE, *mod.JOINTS, *par], gens.jacobian(sp.Matrix(mod.JOINTS)),
+                     modules="numpy")
+    jo = sp.lambdify([*mod.POSE, *mod.JOINTS, *par], gens.jacobian(sp.Matrix(mod.POSE)),
+                     modules="numpy")
+
+    def ik_fn(poses):
+        cols = [poses[:, i] for i in range(4)]
+        return np.stack(np.broadcast_arrays(*ik(*cols, *GEOMETRY.values())), axis=-1)
+
+    def jac_fn(poses):
+        q = ik_fn(poses)
+        cols = [poses[:, i] for i in range(4)] + [q[:, i] for i in range(4)]
+        n = len(poses)
+        a = np.moveaxis(np.array([[np.broadcast_to(v, n) for v in row]
+                                  for row in ji(*cols, *GEOMETRY.values())]), -1, 0)
+        b = np.moveaxis(np.array([[np.broadcast_to(v, n) for v in row]
+                                  for row in jo(*cols, *GEOMETRY.values())]), -1, 0)
+        return -np.linalg.solve(a, b)
+
+    return ik_fn, jac_fn
+
+
+def throughput_benchmarks(n, derivation):
+    rng = np.random.default_rng(1)
+    poses = reachable_poses(n, rng)
+    ik_fn, jac_fn = lambdify_baseline(derivation)
+    out = {"poses": n}
+    t_gen_ik = median_time(lambda: gen.ik(poses, 0, **GEOMETRY), 5)
+    t_lam_ik = median_time(lambda: ik_fn(poses), 5)
+    t_gen_jac = median_time(lambda: gen.jacobian(poses, 0, **GEOMETRY), 3)
+    t_lam_jac = median_time(lambda: jac_fn(poses), 3)
+    agree_ik = float(np.nanmax(np.abs(gen.ik(poses, 0, **GEOMETRY) - ik_fn(poses))))
+    agree_j = float(np.nanmax(np.abs(gen.jacobian(poses, 0, **GEOMETRY) - jac_fn(poses))))
+    out.update({
+        "generated_ik_poses_per_s": n / t_gen_ik,
+        "lambdify_ik_poses_per_s": n / t_lam_ik,
+        "ik_speedup_vs_lambdify": t_lam_ik / t_gen_ik,
+        "generated_ik_plus_jacobian_poses_per_s": n / t_gen_jac,
+        "lambdify_ik_plus_jacobian_poses_per_s": n / t_lam_jac,
+        "jacobian_speedup_vs_lambdify": t_lam_jac / t_gen_jac,
+        "max_abs_difference_ik": agree_ik,
+        "max_abs_difference_jacobian": agree_j,
+        "generated_operation_count": gen.OPERATION_COUNT,
+    })
+    print(out, flush=True)
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
+    ap.add_argument("--poses", type=int, default=1_000_000)
+    ap.add_argument("--sympy-budget", type=float, default=60.0)
+    args = ap.parse_args()
+    derivation = derive("pro_hep_lct")
+    results = {
+        "machine": {"python": platform.python_version(), "numpy": np.__version__,
+                    "sympy": sp.__version__, "cpus": os.cpu_count(),
+                    "singular": SingularEngine().version() if SingularEngine().available()
+                    else None},
+        "elimination": elimination_benchmarks(args.sympy_budget),
+        "derive": derive_benchmarks(),
+        "throughput": throughput_benchmarks(args.poses, derivation),
+    }
+    args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()
