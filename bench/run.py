@@ -91,7 +91,11 @@ def reachable_poses(n, rng):
     q5 = rng.uniform(100, 300, n)
     q4 = q5 - rng.uniform(20, 180, n)
     xu = g["lq5"] + np.sqrt(g["ld4"] ** 2 - (q5 - q4) ** 2)
-    return np.stack([xu, q5, xd, yd], axis=-1)
+    poses = np.stack([xu, q5, xd, yd], axis=-1)
+    # keep the poses that chain 2 reaches too (the generated code would give NaN elsewhere)
+    r = np.hypot(xd, yd + g["d"] / 2 - g["lq4d"])
+    ok = (abs(g["l3"] - g["l4"]) + 1 < r) & (r < g["l3"] + g["l4"] - 1)
+    return poses[ok]
 
 
 def lambdify_baseline(derivation):
@@ -105,10 +109,10 @@ def lambdify_baseline(derivation):
     q_exprs = [solved[j] for j in mod.JOINTS]
     ik = sp.lambdify([*mod.POSE, *par], q_exprs, modules="numpy")
     gens = sp.Matrix([sp.expand(s.generator).subs(sub) for s in derivation.steps])
-    ji = sp.lambdify([*mod.POSE, *mod.JOINTS, *par], gens.jacobian(sp.Matrix(mod.JOINTS)),
-                     modules="numpy")
-    jo = sp.lambdify([*mod.POSE, *mod.JOINTS, *par], gens.jacobian(sp.Matrix(mod.POSE)),
-                     modules="numpy")
+    ji = sp.lambdify([*mod.POSE, *mod.JOINTS, *par],
+                     list(gens.jacobian(sp.Matrix(mod.JOINTS))), modules="numpy")
+    jo = sp.lambdify([*mod.POSE, *mod.JOINTS, *par],
+                     list(gens.jacobian(sp.Matrix(mod.POSE))), modules="numpy")
 
     def ik_fn(poses):
         cols = [poses[:, i] for i in range(4)]
@@ -118,18 +122,17 @@ def lambdify_baseline(derivation):
         q = ik_fn(poses)
         cols = [poses[:, i] for i in range(4)] + [q[:, i] for i in range(4)]
         n = len(poses)
-        a = np.moveaxis(np.array([[np.broadcast_to(v, n) for v in row]
-                                  for row in ji(*cols, *GEOMETRY.values())]), -1, 0)
-        b = np.moveaxis(np.array([[np.broadcast_to(v, n) for v in row]
-                                  for row in jo(*cols, *GEOMETRY.values())]), -1, 0)
-        return -np.linalg.solve(a, b)
+        a = np.stack(np.broadcast_arrays(*ji(*cols, *GEOMETRY.values()), np.empty(n)))[:-1]
+        b = np.stack(np.broadcast_arrays(*jo(*cols, *GEOMETRY.values()), np.empty(n)))[:-1]
+        return -np.linalg.solve(a.T.reshape(n, 4, 4), b.T.reshape(n, 4, 4))
 
     return ik_fn, jac_fn
 
 
 def throughput_benchmarks(n, derivation):
     rng = np.random.default_rng(1)
-    poses = reachable_poses(n, rng)
+    poses = reachable_poses(3 * n, rng)[:n]
+    n = len(poses)
     ik_fn, jac_fn = lambdify_baseline(derivation)
     out = {"poses": n}
     t_gen_ik = median_time(lambda: gen.ik(poses, 0, **GEOMETRY), 5)

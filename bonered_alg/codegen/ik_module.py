@@ -36,6 +36,30 @@ def _literal(value) -> str:
     return "None" if value is None else repr(float(value))
 
 
+def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
+                         joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol]) -> list:
+    """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21).
+
+    Generator ``k`` involves only joints solved at steps ``<= k``, so ``dG/dq`` in the solve
+    order is lower triangular: ``dq_k/dX = -(dg_k/dX + sum_{j<k} dg_k/dq_j dq_j/dX) / d_k``
+    with the pivot ``d_k = dg_k/dq_k``; ``det Ji = prod d_k``.
+    """
+    rows: dict[sp.Symbol, list[sp.Expr]] = {}
+    pivots, scales = [], []
+    for st, g in zip(steps, gens):
+        d = sp.diff(g, st.joint)
+        dgx = [sp.diff(g, x) for x in pose]
+        row = []
+        for m in range(len(pose)):
+            acc = dgx[m] + sum(sp.diff(g, prev.joint) * rows[prev.joint][m]
+                               for prev in steps[: steps.index(st)])
+            row.append(-acc / d)
+        rows[st.joint] = row
+        pivots.append(d)
+        scales.append(sp.Abs(d) + sum(sp.Abs(e) for e in dgx))
+    return pivots + scales + [e for q in joints for e in rows[q]]
+
+
 def write_ik_module(spec: IKModuleSpec) -> str:
     """Source text of ``generated/<name>.py`` (deterministic for equal inputs)."""
     par = [sp.Symbol(p.name, real=True) for p in spec.parameters]
@@ -65,6 +89,10 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
     jo = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.pose))
     jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
+    kernels.append(kernel("_jac", args, _triangular_jacobian(spec.steps, g_pose, spec.joints,
+                                                             spec.pose),
+                          "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
+                          "substitution: Ji is triangular in the solve order)."))
     kernels.append(kernel("_ji", args, list(ji), "Input Jacobian dG/dq, row-major."))
     kernels.append(kernel("_jo", args, list(jo), "dG/dX for the pose coordinates, row-major."))
     kernels.append(kernel("_jo_study", args, list(jo_study),
@@ -116,6 +144,7 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         "# working mode m takes the '-sqrt' root of a joint's quadratic when bit b of m is set",
         f"MODE_BITS = {tuple(mode_bits)!r}",
         f"_SOLVE_ORDER = {tuple(str(st.joint) for st in spec.steps)!r}",
+        f"_SOLVE_INDEX = {tuple(list(spec.joints).index(st.joint) for st in spec.steps)!r}",
         "# the generator of the constraint ideal solved for each joint (rows of Ji, Jo)",
         "IK_GENERATORS = (",
         *[f"    ({str(st.joint)!r}, {sp.sstr(sp.expand(st.generator))!r}),"

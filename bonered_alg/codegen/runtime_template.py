@@ -1,8 +1,8 @@
 """Fixed runtime part of every generated IK module (copied verbatim into ``generated/``).
 
 It relies on names the generated part defines: ``MECHANISM``, ``PARAMETERS``,
-``PARAMETER_NOTES``, ``PARAMETER_UNITS``, ``POSE``, ``JOINTS``, ``_STEPS``, ``_ji``, ``_jo``,
-``_jo_study``, ``_SINGULARITIES``.
+``PARAMETER_NOTES``, ``PARAMETER_UNITS``, ``POSE``, ``JOINTS``, ``_STEPS``, ``_SOLVE_INDEX``,
+``_ji``, ``_jo``, ``_jo_study``, ``_jac``, ``_SINGULARITIES``.
 """
 
 RUNTIME = '''
@@ -70,39 +70,43 @@ def _mode(func, mode):
     return int(mode)
 
 
-def _solve(pose, mode, par):
+def _solve(pose, mode, par, with_status=False):
+    """Back-substitution through _STEPS; per-joint NaN on failure; status codes on request."""
     shape = pose.shape[:-1]
     cols = [pose[..., i] for i in range(len(POSE))]
-    status = numpy.zeros(shape, dtype=numpy.int8)
-    status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
+    out = numpy.empty(shape + (len(JOINTS),))
+    status = numpy.zeros(shape, dtype=numpy.int8) if with_status else None
+    if with_status:
+        status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
     solved = []
     with numpy.errstate(all="ignore"):
-        for degree, kern, bit in _STEPS:
-            a, b, c = (numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
-                       for v in kern(*cols, *solved, *par))
-            new = numpy.zeros(shape, dtype=numpy.int8)
+        for (degree, kern, bit), index in zip(_STEPS, _SOLVE_INDEX):
+            a, b, c = kern(*cols, *solved, *par)
             if degree == 1:
-                root = -c / b
-                new[b == 0] = JOINT_AT_INFINITY
+                root = numpy.asarray(-c / b, dtype=float)
+                bad = ~numpy.isfinite(root)
+                no_real = None
             else:
                 sign = -1.0 if (mode >> bit) & 1 else 1.0
-                disc = b * b - 4.0 * a * c
-                tol = _DISC_RTOL * (b * b + 4.0 * numpy.abs(a * c))
-                sq = numpy.sqrt(numpy.where(disc > 0.0, disc, 0.0))
-                direct = sign * b <= 0.0
-                root = numpy.where(direct, (-b + sign * sq) / (2.0 * a),
-                                   (2.0 * c) / (-b - sign * sq))
-                new[numpy.abs(disc) <= tol] = ON_BOUNDARY
-                new[disc < -tol] = NO_REAL_SOLUTION
-                new[(~numpy.isfinite(root)) & (new != NO_REAL_SOLUTION)] = JOINT_AT_INFINITY
-            status = numpy.where(status == OK, new, status).astype(numpy.int8)
+                bb = b * b
+                disc = bb - 4.0 * a * c
+                ssq = sign * numpy.sqrt(numpy.maximum(disc, 0.0))
+                # numerically stable roots: never subtract nearly equal numbers
+                root = numpy.where(sign * b <= 0.0, (ssq - b) / (2.0 * a), (2.0 * c) / (-b - ssq))
+                no_real = disc < -_DISC_RTOL * bb
+                bad = no_real | ~numpy.isfinite(root)
+            root = numpy.where(bad, numpy.nan, root)
+            if with_status:
+                new = numpy.where(bad, JOINT_AT_INFINITY, OK)
+                if no_real is not None:
+                    new = numpy.where(no_real, NO_REAL_SOLUTION, new)
+                    on_boundary = ~bad & (numpy.abs(disc) <= _DISC_RTOL * bb)
+                    new = numpy.where(on_boundary, ON_BOUNDARY, new)
+                # the first failure wins; a failure overrides an earlier ON_BOUNDARY
+                replace = (status == OK) | ((status == ON_BOUNDARY) & bad)
+                status = numpy.where(replace, new, status).astype(numpy.int8)
+            out[..., index] = root
             solved.append(root)
-    q = numpy.stack([numpy.broadcast_to(s, shape) for s in solved], axis=-1)
-    order = [JOINTS.index(name) for name in _SOLVE_ORDER]
-    out = numpy.empty_like(q)
-    out[..., order] = q
-    failed = (status != OK) & (status != ON_BOUNDARY)
-    out[failed] = numpy.nan
     return out, status
 
 
@@ -119,7 +123,7 @@ def ik(pose, mode=0, **params):
 def ik_status(pose, mode=0, **params):
     """Status code per pose (``STATUS`` explains each code) for ``ik(pose, mode)``."""
     _, status = _solve(_pose("ik_status", pose), _mode("ik_status", mode),
-                       _params("ik_status", params))
+                       _params("ik_status", params), with_status=True)
     return status
 
 
@@ -160,35 +164,41 @@ def output_jacobian(pose, q, **params):
 def jacobian(pose, mode=0, **params):
     """``J = dq/dX`` (..., len(JOINTS), len(POSE)), X as listed in POSE; NaN where invalid.
 
-    ``J = -Ji^{-1} dG/dX``; NaN where the IK fails or ``det Ji`` vanishes (relative to the
-    product of the row norms of Ji), see ``jacobian_status``.
+    ``J = -Ji^{-1} dG/dX``, solved by forward substitution (Ji is triangular in the order the
+    IK solves the joints); NaN where the IK fails or a pivot ``dG_k/dq_k`` vanishes relative
+    to its row (an input singularity), see ``jacobian_status``.
     """
-    J, _ = _jacobian("jacobian", pose, mode, params)
+    J, _ = _jacobian("jacobian", pose, mode, params, False)
     return J
 
 
 def jacobian_status(pose, mode=0, **params):
     """Status per pose for ``jacobian``: an IK status, or INPUT_SINGULAR."""
-    _, status = _jacobian("jacobian_status", pose, mode, params)
+    _, status = _jacobian("jacobian_status", pose, mode, params, True)
     return status
 
 
-def _jacobian(func, pose, mode, params):
+def _jacobian(func, pose, mode, params, with_status):
     pose, mode, par = _pose(func, pose), _mode(func, mode), _params(func, params)
-    q, status = _solve(pose, mode, par)
-    ji, jo, _ = _matrices(pose, q, par)
+    q, status = _solve(pose, mode, par, with_status)
+    shape = pose.shape[:-1]
+    n, m = len(JOINTS), len(POSE)
+    cols = [pose[..., i] for i in range(m)]
+    qc = [q[..., i] for i in range(n)]
     with numpy.errstate(all="ignore"):
-        det = numpy.linalg.det(numpy.where(numpy.isfinite(ji), ji, 0.0))
-        scale = numpy.prod(numpy.linalg.norm(ji, axis=-1), axis=-1)
-        singular = ~(numpy.abs(det) > _DET_RTOL * scale)
-    status = numpy.where((status == OK) & singular, INPUT_SINGULAR, status).astype(numpy.int8)
-    status = numpy.where(status == ON_BOUNDARY, INPUT_SINGULAR, status).astype(numpy.int8)
-    bad = status != OK
-    eye = numpy.eye(len(JOINTS))
-    safe = numpy.where(bad[..., None, None], eye, ji)
-    safe_jo = numpy.where(bad[..., None, None], 0.0, jo)
-    J = -numpy.linalg.solve(safe, safe_jo)
-    J[bad] = numpy.nan
+        values = _jac(*cols, *qc, *par)
+        pivots, scales, entries = values[:n], values[n:2 * n], values[2 * n:]
+        singular = numpy.zeros(shape, dtype=bool)
+        for d, sc in zip(pivots, scales):
+            singular |= ~(numpy.abs(d) > _DET_RTOL * sc)
+        J = numpy.empty(shape + (n * m,))
+        for k, e in enumerate(entries):
+            J[..., k] = e
+    J = J.reshape(shape + (n, m))
+    J[singular] = numpy.nan
+    if with_status:
+        ik_ok = (status == OK) | (status == ON_BOUNDARY)
+        status = numpy.where(ik_ok & singular, INPUT_SINGULAR, status).astype(numpy.int8)
     return J, status
 
 

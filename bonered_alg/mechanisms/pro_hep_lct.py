@@ -357,3 +357,25 @@ def verify(deriv) -> list:
         "with lq4 = sqrt((q4-q5+ld4)(-q4+q5+ld4)) > 0 inside the workspace, so the zero sets "
         "agree: q4 = q5 (the rod ld4 parallel to OX)"))
     return out
+
+
+# interpretation of the singularity polynomials (checked in tests/test_singularities_pro_hep_lct.py)
+SINGULARITY_NOTES = {
+    "det_Ji_Pu": "Input singularity q4 = q5: the rod ld4 is parallel to OX, the carriage is at "
+                 "its largest reach Xu = lq5 + ld4 and the two modes of q4 merge (004 eq. 37, "
+                 "sg16; the paper's form divides by lq4).",
+    "det_Jo_Pu": "Output singularity lq5 + 2 yu1 = 0, i.e. Xu = lq5 and lq4 = 0: the rod lies "
+                 "along OY, so the carriage can move along OX to first order with q4 and q5 "
+                 "locked. Not listed in the paper's sg1-sg16.",
+    "boundary_q4": "Same locus as det_Ji_Pu seen from the pose side: (Xu - lq5)^2 = ld4^2.",
+    "det_Ji_Pd": "Input singularities of the lower mechanism: one factor per chain, vanishing "
+                 "where l1 and l2 (resp. l3 and l4) are aligned, the boundary of that chain's "
+                 "reach (004 eq. 36, Fig. 3c).",
+    "det_Jo_Pd": "Output singularity of the lower mechanism: vanishes where the links l2 and l4 "
+                 "are parallel, where link d (kept at constant orientation) can translate with "
+                 "t1 and w1 locked: the self-motion of 004 Fig. 3b (which the paper attributes "
+                 "to its input polynomial eq. 34).",
+    "boundary_t1": "Circles |Pd - (0, d/2)| = l1 +- l2: chain 1 stretched or folded (004 eq. 36).",
+    "boundary_w1": "Circles |Pd + (0, d/2) - (0, lq4d)| = l3 +- l4: chain 2 stretched or folded "
+                   "(004 eq. 36).",
+}
