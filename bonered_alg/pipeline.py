@@ -49,6 +49,17 @@ class LegResult:
     result: EliminationResult
 
 
+@dataclass(frozen=True)
+class ClosureVelocity:
+    """Ji = dG/dq and Jo = dG/dy of one closure (004 eq. 19-20), rows = IK generators."""
+
+    closure: str
+    joints: tuple[sp.Symbol, ...]
+    pose: tuple[sp.Symbol, ...]
+    ji: sp.Matrix
+    jo: sp.Matrix
+
+
 @dataclass
 class Derivation:
     """Everything derived for one mechanism (symbolic; nothing written yet)."""
@@ -59,6 +70,7 @@ class Derivation:
     legs: list[LegResult]
     steps: list[IKStep]
     singularities: list[FactoredPolynomial]
+    velocity: list[ClosureVelocity] = field(default_factory=list)
     verification: list[Verdict] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
 
@@ -93,8 +105,9 @@ def derivation_hash(name: str, package_dir: Path = PACKAGE_DIR,
     return h.hexdigest()
 
 
-def _singularities(mech: Mechanism, steps: list[IKStep]) -> list[FactoredPolynomial]:
-    out = []
+def _velocity_and_singularities(mech: Mechanism, steps: list[IKStep]):
+    out: list[FactoredPolynomial] = []
+    velocity: list[ClosureVelocity] = []
     for closure in mech.closures:
         syms = set().union(*(leg.free_symbols for leg in closure.legs),
                            *(c.equation.free_symbols for c in closure.couplings))
@@ -106,6 +119,7 @@ def _singularities(mech: Mechanism, steps: list[IKStep]) -> list[FactoredPolynom
         pose = [p for p in closure.pose if any(p in s.generator.free_symbols for s in csteps)]
         ji = gens.jacobian(joints)
         jo = gens.jacobian(sp.Matrix(pose))
+        velocity.append(ClosureVelocity(closure.name, tuple(joints), tuple(pose), ji, jo))
         out.append(factored(f"det_Ji_{closure.point}", ji.det(method="berkowitz"),
                             f"input singularity of the {closure.name}: det dG/d("
                             + ", ".join(map(str, joints)) + ")"))
@@ -119,7 +133,7 @@ def _singularities(mech: Mechanism, steps: list[IKStep]) -> list[FactoredPolynom
                     f"boundary_{s.joint}", discriminant(s.generator, s.joint),
                     f"discriminant of the generator in {s.joint}: the boundary of the "
                     f"reach of the leg driven by {s.joint} (two working modes merge)"))
-    return out
+    return velocity, out
 
 
 def derive(name: str | ModuleType, engine: Engine | None = None,
@@ -147,10 +161,10 @@ def derive(name: str | ModuleType, engine: Engine | None = None,
     pool = [(f"{r.closure.point}/{r.leg.name}", g) for r in legs for g in r.result.generators]
     t1 = time.perf_counter()
     steps = plan(pool, module.JOINTS, f"mechanism {mech.name!r}: inverse kinematics")
-    sing = _singularities(mech, steps)
+    velocity, sing = _velocity_and_singularities(mech, steps)
     timings["ik plan, Jacobians, singularities"] = time.perf_counter() - t1
     dhash = derivation_hash(name, module_file=module.__file__)
-    d = Derivation(mech, module, dhash, legs, steps, sing, timings=timings)
+    d = Derivation(mech, module, dhash, legs, steps, sing, velocity, timings=timings)
     t2 = time.perf_counter()
     d.verification = algebra_verdicts() + module.verify(d)
     timings["verification"] = time.perf_counter() - t2

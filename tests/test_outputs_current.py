@@ -48,3 +48,21 @@ def test_hash_covers_only_the_mechanism_and_the_core(tmp_path):
     (pkg / "algebra" / "convention.py").write_text(
         (pkg / "algebra" / "convention.py").read_text() + "\n# changed\n")
     assert derivation_hash("pro_hep_lct", pkg) != h_pro
+
+
+def test_missing_engine_leaves_outputs_untouched(tmp_path, monkeypatch):
+    """An engine that is not installed (and no cached result) stops before any write."""
+    import pytest
+
+    from bonered_alg.elimination.engines import SingularEngine
+    from bonered_alg.errors import EngineUnavailableError
+    from bonered_alg.pipeline import derive_all
+
+    monkeypatch.setenv("BONERED_CACHE_DIR", str(tmp_path / "empty-cache"))
+    for folder in ("generated", "derivations"):
+        shutil.copytree(ROOT / folder, tmp_path / folder)
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    with pytest.raises(EngineUnavailableError, match="mechanism 'pro_hep_lct'.*singular"):
+        derive_all(tmp_path, ["pro_hep_lct"], force=True,
+                   engine=SingularEngine("no-such-singular"), log=lambda _: None)
+    assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before

@@ -33,7 +33,8 @@ def _study(point) -> str:
 
 def _section_mechanism(d) -> list[str]:
     m = d.mechanism
-    out = [r"\section{Mechanism}", tex_escape(m.module_doc if hasattr(m, "module_doc") else ""),
+    intro = (d.module.__doc__ or "").strip().split("\n\n")[0]
+    out = [r"\section{Mechanism}", tex_escape(" ".join(intro.split())), "",
            f"Source: {tex_escape(m.source)}.", "",
            r"\subsection{Geometric parameters}",
            r"\begin{longtable}{llp{0.45\textwidth}p{0.22\textwidth}}\toprule",
@@ -145,6 +146,19 @@ def _section_velocity(d) -> list[str]:
            r"19--21), so $\partial q/\partial X = -J_i^{-1} J_o$. The generated module "
            "evaluates both matrices and the solve, and returns NaN with a status where "
            r"$\det J_i$ vanishes."]
+    for v in d.velocity:
+        out.append(rf"\subsection{{{tex_escape(v.closure)}}}")
+        out.append("Rows: the IK generators of " + ", ".join(f"${latex(q)}$" for q in v.joints)
+                   + "; $J_i$ columns " + ", ".join(f"${latex(q)}$" for q in v.joints)
+                   + ", $J_o$ columns " + ", ".join(f"${latex(y)}$" for y in v.pose)
+                   + ". Non-zero entries:")
+        for name, mat, cols in (("J_i", v.ji, v.joints), ("J_o", v.jo, v.pose)):
+            for i in range(mat.rows):
+                for j in range(mat.cols):
+                    if mat[i, j] != 0:
+                        out.append(broken_math(f"{name}[{i + 1},{latex(cols[j])}]",
+                                               sp.expand(mat[i, j])))
+    out.append(r"\subsection{Singularity polynomials}")
     for s in d.singularities:
         out.append(rf"\paragraph{{{tex_escape(s.name)}}} {tex_escape(s.meaning)}. "
                    f"Constant factor ${latex(s.constant)}$, irreducible factors:")
