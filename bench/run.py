@@ -139,6 +139,8 @@ def throughput_benchmarks(n, derivation):
     t_lam_ik = median_time(lambda: ik_fn(poses), 5)
     t_gen_jac = median_time(lambda: gen.jacobian(poses, 0, **GEOMETRY), 3)
     t_lam_jac = median_time(lambda: jac_fn(poses), 3)
+    q_all = gen.ik(poses, 0, **GEOMETRY)
+    t_fk = median_time(lambda: gen.fk(q_all, **GEOMETRY), 3)
     agree_ik = float(np.nanmax(np.abs(gen.ik(poses, 0, **GEOMETRY) - ik_fn(poses))))
     agree_j = float(np.nanmax(np.abs(gen.jacobian(poses, 0, **GEOMETRY) - jac_fn(poses))))
     out.update({
@@ -148,6 +150,8 @@ def throughput_benchmarks(n, derivation):
         "generated_ik_plus_jacobian_poses_per_s": n / t_gen_jac,
         "lambdify_ik_plus_jacobian_poses_per_s": n / t_lam_jac,
         "jacobian_speedup_vs_lambdify": t_lam_jac / t_gen_jac,
+        "generated_fk_all_modes_configurations_per_s": n / t_fk,
+        "fk_modes": gen.FK_MODES,
         "max_abs_difference_ik": agree_ik,
         "max_abs_difference_jacobian": agree_j,
         "generated_operation_count": gen.OPERATION_COUNT,

@@ -23,10 +23,16 @@ from . import __version__
 from .chains.joints import Leg
 from .chains.mechanism import Closure, Mechanism
 from .codegen.ik_module import IKModuleSpec, write_ik_module
-from .elimination.cache import eliminate
+from .elimination import polyterms as pt
+from .elimination.cache import eliminate, lex_basis
 from .elimination.closure import leg_problem
 from .elimination.engines import DEFAULT_BUDGET_S, Engine, get_engine
-from .elimination.problem import EliminationProblem, EliminationResult
+from .elimination.problem import (
+    EliminationProblem,
+    EliminationResult,
+    ParametricProblem,
+    ParametricResult,
+)
 from .errors import NonClosingMechanismError
 from .fileio import atomic_write_text
 from .kinematics.ik_plan import IKStep, mode_count, plan
@@ -60,6 +66,18 @@ class ClosureVelocity:
     jo: sp.Matrix
 
 
+@dataclass(frozen=True)
+class ClosureFK:
+    """Forward kinematics of one closure: lex basis over Q(joints, geometry) and its plan."""
+
+    closure: str
+    problem: ParametricProblem
+    result: ParametricResult
+    dimension: int
+    solutions: int | None
+    steps: tuple[IKStep, ...]
+
+
 @dataclass
 class Derivation:
     """Everything derived for one mechanism (symbolic; nothing written yet)."""
@@ -71,6 +89,7 @@ class Derivation:
     steps: list[IKStep]
     singularities: list[FactoredPolynomial]
     velocity: list[ClosureVelocity] = field(default_factory=list)
+    fk: list[ClosureFK] = field(default_factory=list)
     verification: list[Verdict] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
 
@@ -136,6 +155,33 @@ def _velocity_and_singularities(mech: Mechanism, steps: list[IKStep]):
     return velocity, out
 
 
+def _forward_kinematics(mech: Mechanism, legs: list[LegResult], engine: Engine,
+                        budget_s: float, use_cache: bool) -> list[ClosureFK]:
+    """Per closure: lex basis of the union of its leg ideals in the pose unknowns over
+    Q(active joints, geometry); zero-dimensional -> finitely many assembly modes, solved by
+    back-substitution.  Returns [] (no FK) if some closure is not zero-dimensional."""
+    out = []
+    for closure in mech.closures:
+        gens = [g for r in legs if r.closure is closure for g in r.result.generators]
+        syms = set().union(*(g.free_symbols for g in gens))
+        unknowns = tuple(y for y in closure.pose if y in syms)
+        params = tuple(s for s in (*mech.active, *mech.geometric) if s in syms)
+        problem = ParametricProblem(
+            f"mechanism {mech.name!r}, closure {closure.name!r}: forward kinematics",
+            tuple(gens), unknowns, params)
+        result = lex_basis(problem, engine, budget_s, use_cache)
+        n = len(unknowns)
+        leading = [max(e[:n] for e, _ in p) for p in result.basis]
+        dim = pt.dimension_from_leading_monomials(leading, n)
+        if dim != 0:
+            return []
+        count = pt.count_standard_monomials(leading, n)
+        pool = [(f"lex basis of the {closure.name}", g) for g in result.generators]
+        steps = plan(pool, unknowns, problem.context)
+        out.append(ClosureFK(closure.name, problem, result, dim, count, tuple(steps)))
+    return out
+
+
 def derive(name: str | ModuleType, engine: Engine | None = None,
            budget_s: float = DEFAULT_BUDGET_S, use_cache: bool = True) -> Derivation:
     """Derive a mechanism (registered name, or a mechanism module) completely, in memory."""
@@ -163,8 +209,11 @@ def derive(name: str | ModuleType, engine: Engine | None = None,
     steps = plan(pool, module.JOINTS, f"mechanism {mech.name!r}: inverse kinematics")
     velocity, sing = _velocity_and_singularities(mech, steps)
     timings["ik plan, Jacobians, singularities"] = time.perf_counter() - t1
+    t_fk = time.perf_counter()
+    fk = _forward_kinematics(mech, legs, engine, budget_s, use_cache)
+    timings["forward kinematics (lex bases)"] = time.perf_counter() - t_fk
     dhash = derivation_hash(name, module_file=module.__file__)
-    d = Derivation(mech, module, dhash, legs, steps, sing, velocity, timings=timings)
+    d = Derivation(mech, module, dhash, legs, steps, sing, velocity, fk, timings=timings)
     t2 = time.perf_counter()
     d.verification = algebra_verdicts() + module.verify(d)
     timings["verification"] = time.perf_counter() - t2
@@ -180,7 +229,11 @@ def ik_module_source(d: Derivation) -> str:
         parameters=list(d.mechanism.parameters.values()), pose=m.POSE,
         pose_units=m.POSE_UNITS, pose_to_study=m.POSE_TO_STUDY, joints=m.JOINTS,
         joint_units=m.JOINT_UNITS, steps=d.steps,
-        singularities=[(s.name, s.expression, s.meaning) for s in d.singularities])
+        singularities=[(s.name, s.expression, s.meaning) for s in d.singularities],
+        fk_steps=[s for f in d.fk for s in f.steps],
+        fk_unknowns=[s.joint for f in d.fk for s in f.steps],
+        fk_system=[g for f in d.fk for g in f.problem.equations],
+        study_to_pose=getattr(m, "STUDY_TO_POSE", None))
     return write_ik_module(spec)
 
 

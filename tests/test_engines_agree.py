@@ -50,3 +50,11 @@ def test_dimension_matches_singular():
         out = subprocess.run(["Singular", "-q", "--no-rc"], input=script, capture_output=True,
                              text=True, timeout=30).stdout.split()
         assert ours == expected == int(out[0])
+
+
+def test_lex_bases_agree(derivation):
+    """The forward-kinematics lex bases over Q(joints, geometry) agree between engines."""
+    assert derivation.fk, "forward kinematics was derived"
+    for f in derivation.fk:
+        assert SympyEngine().lex_basis(f.problem, 120) == SingularEngine().lex_basis(
+            f.problem, 120)

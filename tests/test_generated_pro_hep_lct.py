@@ -207,3 +207,48 @@ def test_bad_input_errors(gen):
     with pytest.raises(ValueError, match=r"mode must be an integer in \[0, 8\)"):
         gen.ik(np.zeros(4), mode=8, **GEOMETRY)
     assert gen.ik_status(np.array([np.nan, 0, 0, 0]), **GEOMETRY) == gen.INVALID_INPUT
+
+
+def test_fk_recovers_every_ik_mode(gen):
+    """X is among fk(ik(X, m)) for every working mode m (all assembly modes returned)."""
+    poses, _ = reachable_poses(60)
+    q_all = gen.ik_all(poses, **GEOMETRY)  # (60, 8, 4)
+    sols = gen.fk(q_all, **GEOMETRY)  # (60, 8, FK_MODES, 4)
+    assert sols.shape == (60, 8, gen.FK_MODES, 4)
+    err = np.nanmin(np.max(np.abs(sols - poses[:, None, None, :]), axis=-1), axis=-1)
+    assert np.max(err) < 1e-9
+
+
+def test_fk_against_independent_circle_intersection(gen):
+    """Lower mechanism: Pd from t1, w1 solved numerically from the joint geometry."""
+    from scipy.optimize import least_squares
+
+    g = GEOMETRY
+    for th1, ph1 in [(0.3, 1.9), (-0.4, 2.3), (0.8, 1.2)]:
+        e1 = g["l1"] * np.array([np.cos(th1), np.sin(th1)])
+        e2 = np.array([0, g["lq4d"]]) + g["l3"] * np.array([np.cos(ph1), np.sin(ph1)])
+
+        def residual(p, e1=e1, e2=e2):
+            return [np.hypot(*(p - np.array([0, g["d"] / 2]) - e1)) - g["l2"],
+                    np.hypot(*(p + np.array([0, g["d"] / 2]) - e2)) - g["l4"]]
+
+        numeric = []
+        for start in ([300, 0], [-300, 0], [0, 300], [0, -300], [200, 200], [-200, -200]):
+            r = least_squares(residual, start, xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            if np.max(np.abs(r.fun)) < 1e-9 and not any(np.allclose(r.x, n, atol=1e-6)
+                                                        for n in numeric):
+                numeric.append(r.x)
+        q = np.array([np.tan(th1 / 2), np.tan(ph1 / 2), 100.0, 200.0])
+        lower = gen.fk(q, **GEOMETRY)[:, 2:]
+        found = {tuple(np.round(p, 6)) for p in lower if np.all(np.isfinite(p))}
+        assert len(numeric) == len(found)
+        for n in numeric:
+            assert np.min(np.max(np.abs(lower - n), axis=-1)) < 1e-8
+
+
+def test_fk_without_real_assembly(gen):
+    # the two elbows farther apart than l2 + l4 + d: no real Pd; a stroke q5 - q4 > ld4: no Pu
+    q = np.array([np.tan(-1.4 / 2), np.tan(1.5 / 2), 0.0, GEOMETRY["ld4"] + 50.0])
+    sols = gen.fk(q, **GEOMETRY)
+    status = gen.fk_status(q, **GEOMETRY)
+    assert np.all(np.isnan(sols)) and np.all(status == gen.NO_REAL_SOLUTION)

@@ -30,6 +30,10 @@ class IKModuleSpec:
     joint_units: Sequence[str]
     steps: Sequence[IKStep]
     singularities: Sequence[tuple[str, sp.Expr, str]]
+    fk_steps: Sequence[IKStep] = ()
+    fk_unknowns: Sequence[sp.Symbol] = ()
+    study_to_pose: dict[sp.Symbol, sp.Expr] | None = None
+    fk_system: Sequence[sp.Expr] = ()  # leg generators, for Gauss-Newton polishing of fk
 
 
 def _literal(value) -> str:
@@ -60,29 +64,46 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
     return pivots + scales + [e for q in joints for e in rows[q]]
 
 
-def write_ik_module(spec: IKModuleSpec) -> str:
-    """Source text of ``generated/<name>.py`` (deterministic for equal inputs)."""
-    par = [sp.Symbol(p.name, real=True) for p in spec.parameters]
-    sub = dict(spec.pose_to_study)
-    study = list(sub)
-    kernels: list[Kernel] = []
-    steps_src = []
+def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
+                  par: Sequence[sp.Symbol], sub: dict) -> tuple[list[Kernel], list[str], list]:
+    """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows."""
+    kernels, rows, mode_bits = [], [], []
     solved: list[sp.Symbol] = []
     bit = 0
-    mode_bits = []
-    for k, st in enumerate(spec.steps):
+    for k, st in enumerate(steps):
         coeffs = [sp.sympify(c).subs(sub) for c in (st.A, st.B, st.C)]
-        kern = kernel(f"_step{k}_{st.joint}", [*spec.pose, *solved, *par], coeffs,
+        kern = kernel(f"_{prefix}{k}_{st.joint}", [*inputs, *solved, *par], coeffs,
                       f"Coefficients (A, B, C) of the generator solved for {st.joint} "
                       f"(from {st.source}).")
         kernels.append(kern)
         if st.degree == 2:
             mode_bits.append((str(st.joint), bit))
-            steps_src.append(f"    (2, {kern.name}, {bit}),")
+            rows.append(f"    (2, {kern.name}, {bit}),")
             bit += 1
         else:
-            steps_src.append(f"    (1, {kern.name}, None),")
+            rows.append(f"    (1, {kern.name}, None),")
         solved.append(st.joint)
+    return kernels, rows, mode_bits
+
+
+def write_ik_module(spec: IKModuleSpec) -> str:
+    """Source text of ``generated/<name>.py`` (deterministic for equal inputs)."""
+    par = [sp.Symbol(p.name, real=True) for p in spec.parameters]
+    sub = dict(spec.pose_to_study)
+    study = list(sub)
+    kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, spec.pose, par, sub)
+    bit = len(mode_bits)
+    fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
+    kernels += fk_kernels
+    if spec.fk_steps:
+        kernels.append(kernel("_fk_pose", [*spec.fk_unknowns, *par],
+                              [spec.study_to_pose[x] for x in spec.pose],
+                              "Pose coordinates (POSE) from the solved Study coordinates."))
+        system = sp.Matrix(list(spec.fk_system))
+        kernels.append(kernel(
+            "_fk_newton", [*spec.fk_unknowns, *spec.joints, *par],
+            list(system) + list(system.jacobian(sp.Matrix(list(spec.fk_unknowns)))),
+            "Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major)."))
     gens = [sp.expand(st.generator) for st in spec.steps]
     args = [*spec.pose, *spec.joints, *par]
     g_pose = [g.subs(sub) for g in gens]
@@ -114,8 +135,9 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         f"Derivation hash: {spec.derivation_hash}",
         f"Operation count after common-subexpression elimination: {total}.",
         "",
-        "Contract (DESIGN.md section 4): ik, ik_all, ik_status, jacobian, jacobian_status,",
-        "input_jacobian, output_jacobian, singularities; all vectorized over leading axes.",
+        "Contract (DESIGN.md section 4): ik, ik_all, ik_status, fk, fk_status, jacobian,",
+        "jacobian_status, input_jacobian, output_jacobian, singularities; all vectorized",
+        "over leading axes.",
         "Imports numpy only.",
         '"""',
         "",
@@ -145,6 +167,15 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         f"MODE_BITS = {tuple(mode_bits)!r}",
         f"_SOLVE_ORDER = {tuple(str(st.joint) for st in spec.steps)!r}",
         f"_SOLVE_INDEX = {tuple(list(spec.joints).index(st.joint) for st in spec.steps)!r}",
+        f"FK_UNKNOWNS = {tuple(str(u) for u in spec.fk_unknowns)!r}",
+        f"FK_MODES = {2 ** len(fk_bits) if spec.fk_steps else 0}",
+        f"FK_MODE_BITS = {tuple(fk_bits)!r}",
+        f"_FK_INDEX = {tuple(list(spec.fk_unknowns).index(st.joint) for st in spec.fk_steps)!r}",
+        "# the generators of the lex basis solved for each Study coordinate in fk",
+        "FK_GENERATORS = (",
+        *[f"    ({str(st.joint)!r}, {sp.sstr(sp.expand(st.generator))!r}),"
+          for st in spec.fk_steps],
+        ")",
         "# the generator of the constraint ideal solved for each joint (rows of Ji, Jo)",
         "IK_GENERATORS = (",
         *[f"    ({str(st.joint)!r}, {sp.sstr(sp.expand(st.generator))!r}),"
@@ -159,5 +190,6 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     for kern in kernels:
         lines.append(kern.source)
         lines.append("")
-    lines += ["_STEPS = (", *steps_src, ")", "_SINGULARITIES = {", *sing_src, "}", ""]
+    lines += ["_STEPS = (", *steps_src, ")", "_FK_STEPS = (", *fk_src, ")",
+              "_SINGULARITIES = {", *sing_src, "}", ""]
     return "\n".join(lines) + RUNTIME

@@ -70,17 +70,23 @@ def _mode(func, mode):
     return int(mode)
 
 
-def _solve(pose, mode, par, with_status=False):
-    """Back-substitution through _STEPS; per-joint NaN on failure; status codes on request."""
-    shape = pose.shape[:-1]
-    cols = [pose[..., i] for i in range(len(POSE))]
-    out = numpy.empty(shape + (len(JOINTS),))
+def _backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False):
+    """Solve ``steps`` in order (linear or quadratic in one unknown each); NaN on failure.
+
+    ``inputs`` has shape (..., n_in); the result has shape (..., n_out) with unknown k at
+    ``indices[k]``, all NaN where any step fails; status codes (``STATUS``) are computed only
+    on request.
+    """
+    shape = inputs.shape[:-1]
+    cols = [inputs[..., i] for i in range(inputs.shape[-1])]
+    out = numpy.empty(shape + (n_out,))
     status = numpy.zeros(shape, dtype=numpy.int8) if with_status else None
     if with_status:
-        status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
+        status[~numpy.all(numpy.isfinite(inputs), axis=-1)] = INVALID_INPUT
     solved = []
+    failed = numpy.zeros(shape, dtype=bool)
     with numpy.errstate(all="ignore"):
-        for (degree, kern, bit), index in zip(_STEPS, _SOLVE_INDEX):
+        for (degree, kern, bit), index in zip(steps, indices):
             a, b, c = kern(*cols, *solved, *par)
             if degree == 1:
                 root = numpy.asarray(-c / b, dtype=float)
@@ -107,7 +113,15 @@ def _solve(pose, mode, par, with_status=False):
                 status = numpy.where(replace, new, status).astype(numpy.int8)
             out[..., index] = root
             solved.append(root)
+            failed |= bad
+    # a configuration is reachable as a whole or not at all: the status says which leg failed
+    out[failed] = numpy.nan
     return out, status
+
+
+def _solve(pose, mode, par, with_status=False):
+    """Inverse kinematics of one working mode."""
+    return _backsubstitute(pose, _STEPS, _SOLVE_INDEX, len(JOINTS), mode, par, with_status)
 
 
 def ik(pose, mode=0, **params):
@@ -216,4 +230,67 @@ def singularities(pose, q, **params):
     return {name: numpy.broadcast_to(numpy.asarray(kern(*cols, *qc, *par)[0], dtype=float),
                                      shape)
             for name, kern in _SINGULARITIES.items()}
+
+
+def _fk_inputs(func, q):
+    q = numpy.asarray(q, dtype=float)
+    if q.ndim == 0 or q.shape[-1] != len(JOINTS):
+        raise ValueError(f"{MECHANISM}.{func}: joints must have shape (..., {len(JOINTS)}) "
+                         f"with coordinates {JOINTS}, got shape {q.shape}")
+    return q
+
+
+def _fk_polish(q, study, par, iterations=2):
+    """Newton steps on the (well-conditioned) leg generators, from the lex-basis solution."""
+    n = len(FK_UNKNOWNS)
+    shape = study.shape[:-1]
+    qc = [q[..., i] for i in range(q.shape[-1])]
+    for _ in range(iterations):
+        with numpy.errstate(all="ignore"):
+            values = _fk_newton(*[study[..., i] for i in range(n)], *qc, *par)
+            vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape) for v in values]
+            m = len(vals) // (n + 1)
+            f = numpy.stack(vals[:m], axis=-1)
+            jac = numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n))
+            # Gauss-Newton: (J^T J) step = J^T f (the plain Newton step when J is square)
+            jtj = numpy.swapaxes(jac, -1, -2) @ jac
+            jtf = numpy.swapaxes(jac, -1, -2) @ f[..., None]
+            ok = numpy.all(numpy.isfinite(jtj), axis=(-2, -1)) & numpy.all(
+                numpy.isfinite(jtf), axis=(-2, -1))
+            ok &= numpy.abs(numpy.linalg.det(numpy.where(ok[..., None, None], jtj,
+                                                         numpy.eye(n)))) > 0.0
+            safe = numpy.where(ok[..., None, None], jtj, numpy.eye(n))
+            step = numpy.linalg.solve(safe, numpy.where(ok[..., None, None], jtf, 0.0))
+        study = numpy.where(ok[..., None], study - step[..., 0], study)
+    return study
+
+
+def _fk_mode(q, mode, par, with_status):
+    study, status = _backsubstitute(q, _FK_STEPS, _FK_INDEX, len(FK_UNKNOWNS), mode, par,
+                                    with_status)
+    study = _fk_polish(q, study, par)
+    shape = q.shape[:-1]
+    with numpy.errstate(all="ignore"):
+        values = _fk_pose(*[study[..., i] for i in range(len(FK_UNKNOWNS))], *par)
+    pose = numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+                        for v in values], axis=-1)
+    return pose, status
+
+
+def fk(q, **params):
+    """Forward kinematics, every assembly mode: array (..., FK_MODES, len(POSE)).
+
+    Solved by back-substitution through a lexicographic Groebner basis of the constraint
+    ideal over Q(joints, geometry), then polished by two Newton steps on the leg generators
+    (the lex basis has large coefficients); a mode whose solution is not real is NaN
+    (``fk_status`` says why).  Poses are in the coordinates of ``POSE``.
+    """
+    q, par = _fk_inputs("fk", q), _params("fk", params)
+    return numpy.stack([_fk_mode(q, m, par, False)[0] for m in range(FK_MODES)], axis=-2)
+
+
+def fk_status(q, **params):
+    """Status per assembly mode for ``fk``: array (..., FK_MODES) of ``STATUS`` codes."""
+    q, par = _fk_inputs("fk_status", q), _params("fk_status", params)
+    return numpy.stack([_fk_mode(q, m, par, True)[1] for m in range(FK_MODES)], axis=-1)
 '''

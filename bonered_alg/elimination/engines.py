@@ -24,7 +24,7 @@ from sympy.polys.orderings import ProductOrder, grevlex
 
 from ..errors import EngineError, EngineTimeoutError, EngineUnavailableError
 from . import polyterms as pt
-from .problem import EliminationProblem
+from .problem import EliminationProblem, ParametricProblem, normal_parametric_basis
 
 DEFAULT_BUDGET_S = 600.0
 
@@ -44,24 +44,53 @@ class Engine(ABC):
     def _eliminate(self, problem: EliminationProblem, budget_s: float) -> list[list[pt.Term]]:
         """Raw reduced basis of the elimination ideal in grevlex on ``problem.keep``."""
 
-    def eliminate(self, problem: EliminationProblem, budget_s: float = DEFAULT_BUDGET_S):
-        """Normalized reduced basis; raises EngineUnavailableError / EngineTimeoutError."""
+    @abstractmethod
+    def _lex_basis(self, problem: ParametricProblem, budget_s: float) -> list[list[pt.Term]]:
+        """Raw lex basis over Q(parameters), denominators cleared, as terms over ``gens``."""
+
+    def _require(self, problem) -> None:
         if not self.available():
             raise EngineUnavailableError(
                 f"{problem.context}: the {self.name} Groebner engine is not installed"
                 + (" (Debian package 'singular')" if self.name == "singular" else "")
             )
+
+    def eliminate(self, problem: EliminationProblem, budget_s: float = DEFAULT_BUDGET_S):
+        """Normalized reduced basis; raises EngineUnavailableError / EngineTimeoutError."""
+        self._require(problem)
         return pt.normal_basis(self._eliminate(problem, budget_s))
+
+    def lex_basis(self, problem: ParametricProblem, budget_s: float = DEFAULT_BUDGET_S):
+        """Normalized lex basis over Q(parameters) (see :class:`ParametricProblem`)."""
+        self._require(problem)
+        raw = self._lex_basis(problem, budget_s)
+        return normal_parametric_basis(raw, problem.unknowns, problem.parameters)
 
 
 # --------------------------------------------------------------------------- sympy
 
 
-def _sympy_worker(problem: EliminationProblem, method: str, queue) -> None:  # pragma: no cover
+def _sympy_worker(func, problem, method: str, queue) -> None:  # pragma: no cover - child
     try:
-        queue.put(("ok", _sympy_basis(problem, method)))
+        queue.put(("ok", func(problem, method)))
     except Exception as exc:  # noqa: BLE001 - reported to the parent verbatim
         queue.put(("error", f"{type(exc).__name__}: {exc}"))
+
+
+def _terms(expr: sp.Expr, gens) -> list[pt.Term]:
+    return [(e, Fraction(int(c.numerator), int(c.denominator)))
+            for e, c in sp.Poly(expr, *gens, domain=sp.QQ).terms()]
+
+
+def _sympy_lex(problem: ParametricProblem, method: str) -> list[list[pt.Term]]:
+    domain = sp.QQ.frac_field(*problem.parameters) if problem.parameters else sp.QQ
+    g = sp.groebner(list(problem.equations), *problem.unknowns, order="lex", domain=domain,
+                    method=method)
+    out = []
+    for p in g.exprs:
+        num, _ = sp.fraction(sp.together(p))
+        out.append(_terms(sp.expand(num), problem.gens))
+    return out
 
 
 def _sympy_basis(problem: EliminationProblem, method: str) -> list[list[pt.Term]]:
@@ -73,11 +102,7 @@ def _sympy_basis(problem: EliminationProblem, method: str) -> list[list[pt.Term]
     if not kept:
         return []
     red = sp.groebner(kept, *problem.keep, order="grevlex", domain=sp.QQ, method=method)
-    return [
-        [(e, Fraction(int(c.numerator), int(c.denominator))) for e, c in
-         sp.Poly(p, *problem.keep, domain=sp.QQ).terms()]
-        for p in red.exprs
-    ]
+    return [_terms(p, problem.keep) for p in red.exprs]
 
 
 class SympyEngine(Engine):
@@ -104,9 +129,17 @@ class SympyEngine(Engine):
         return f"sympy {sp.__version__} ({self.method})"
 
     def _eliminate(self, problem, budget_s):
+        return self._run(_sympy_basis, problem, budget_s)
+
+    def _lex_basis(self, problem, budget_s):
+        return self._run(_sympy_lex, problem, budget_s)
+
+    def _run(self, func, problem, budget_s):
+        """Run ``func(problem, method)`` in a child process killed after ``budget_s``."""
         ctx = mp.get_context("fork")
         queue = ctx.Queue()
-        proc = ctx.Process(target=_sympy_worker, args=(problem, self.method, queue), daemon=True)
+        proc = ctx.Process(target=_sympy_worker, args=(func, problem, self.method, queue),
+                           daemon=True)
         proc.start()
         try:
             status, payload = queue.get(timeout=budget_s)
@@ -178,10 +211,43 @@ print("DONE");
 quit;
 """
 
+    def lex_script(self, problem: ParametricProblem) -> str:
+        nu, npar = len(problem.unknowns), len(problem.parameters)
+        unames = [f"u{i}" for i in range(nu)]
+        pnames = [f"p{i}" for i in range(npar)]
+        eqs = ",\n".join(_singular_poly(t, unames + pnames) for t in problem.equation_terms())
+        coeffs = f"(0, {','.join(pnames)})" if npar else "0"
+        return f"""option(redSB); option(redTail);
+ring r = {coeffs}, ({",".join(unames)}), lp;
+ideal I = {eqs};
+ideal G = std(I);
+int i;
+for (i = 1; i <= ncols(G); i++) {{ G[i] = cleardenom(G[i]); }}
+ring s = 0, ({",".join(unames + pnames)}), dp;
+ideal E = imap(r, G);
+poly g;
+for (i = 1; i <= ncols(E); i++) {{
+  g = E[i];
+  while (g != 0) {{
+    print("T " + string(leadexp(g)) + " " + string(leadcoef(g)));
+    g = g - lead(g);
+  }}
+  print("END");
+}}
+print("DONE");
+quit;
+"""
+
     def _eliminate(self, problem, budget_s):
+        return self._run(self.script(problem), problem, budget_s)
+
+    def _lex_basis(self, problem, budget_s):
+        return self._run(self.lex_script(problem), problem, budget_s)
+
+    def _run(self, script: str, problem, budget_s):
         try:
             out = subprocess.run([self._path(), "-q", "--no-rc", "--no-warn"],
-                                 input=self.script(problem), capture_output=True, text=True,
+                                 input=script, capture_output=True, text=True,
                                  timeout=budget_s)
         except subprocess.TimeoutExpired:
             raise EngineTimeoutError(self.name, problem.context, budget_s) from None

@@ -74,6 +74,32 @@ def dimension_from_leading_monomials(leading: Sequence[Exponents], nvars: int) -
     return 0
 
 
+def count_standard_monomials(leading: Sequence[Exponents], nvars: int) -> int | None:
+    """Number of monomials outside the leading-term ideal (the number of solutions counted
+    with multiplicity of a zero-dimensional ideal; Cox-Little-O'Shea Ch. 5 Sect. 3, Thm. 6).
+    None when the ideal is not zero-dimensional."""
+    bounds = []
+    for i in range(nvars):
+        pure = [e[i] for e in leading if e[i] and all(x == 0 for j, x in enumerate(e) if j != i)]
+        if not pure:
+            return None
+        bounds.append(min(pure))
+    count = 0
+    for mono in _box(bounds):
+        if not any(all(m >= x for m, x in zip(mono, e)) for e in leading):
+            count += 1
+    return count
+
+
+def _box(bounds):
+    if not bounds:
+        yield ()
+        return
+    for head in range(bounds[0]):
+        for tail in _box(bounds[1:]):
+            yield (head, *tail)
+
+
 def to_json(basis: Sequence[PolyTerms]) -> list:
     """JSON-safe form: ``[[[exponents], "num/den"], ...]`` per generator."""
     return [[[list(e), str(c)] for e, c in p] for p in basis]

@@ -10,8 +10,93 @@ import sympy as sp
 from . import polyterms as pt
 
 
+class _PolynomialProblem:
+    """Shared parts: exact term lists of the equations over ``gens``, canonical text, key."""
+
+    context: str
+    equations: tuple[sp.Expr, ...]
+
+    @property
+    def gens(self) -> tuple[sp.Symbol, ...]:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def equation_terms(self) -> list[pt.PolyTerms]:
+        """Equations as exact term lists over ``gens`` (rational coefficients only)."""
+        out = []
+        for eq in self.equations:
+            poly = sp.Poly(sp.expand(eq), *self.gens, domain=sp.QQ)
+            out.append(tuple((e, pt.parse_rational(str(c))) for e, c in poly.terms()))
+        return out
+
+    def canonical_text(self) -> str:
+        names = ",".join(map(str, self.gens))
+        eqs = pt.canonical_text([pt.normal_form(t) for t in self.equation_terms()])
+        return f"{type(self).__name__};split={self.split};vars={names};eqs={eqs}"
+
+    @property
+    def split(self) -> int:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def key(self, engine: str) -> str:
+        return hashlib.sha256(f"{engine}|{self.canonical_text()}".encode()).hexdigest()
+
+
 @dataclass(frozen=True)
-class EliminationProblem:
+class ParametricProblem(_PolynomialProblem):
+    """Lex Groebner basis of ``equations`` in ``unknowns`` over the field Q(``parameters``).
+
+    For a zero-dimensional ideal the basis is triangular (Cox-Little-O'Shea, Ch. 3 Sect. 1-2,
+    and the Shape Lemma), so the unknowns follow by back-substitution: this is how forward
+    kinematics is solved for all assembly modes at once.  Denominators are cleared and each
+    generator is made primitive over Z[parameters], which makes the answer unique.
+    """
+
+    context: str
+    equations: tuple[sp.Expr, ...]
+    unknowns: tuple[sp.Symbol, ...]
+    parameters: tuple[sp.Symbol, ...]
+
+    @property
+    def gens(self) -> tuple[sp.Symbol, ...]:
+        return self.unknowns + self.parameters
+
+    @property
+    def split(self) -> int:
+        return len(self.unknowns)
+
+
+def normal_parametric_basis(polys, unknowns, parameters) -> tuple[pt.PolyTerms, ...]:
+    """Primitive over Z[parameters], positive leading coefficient, sorted (deterministic)."""
+    gens = tuple(unknowns) + tuple(parameters)
+    out = []
+    for terms in polys:
+        expr = sp.Add(*[sp.Rational(c.numerator, c.denominator)
+                        * sp.Mul(*[g**k for g, k in zip(gens, e)]) for e, c in terms])
+        if expr == 0:
+            continue
+        expr, _ = sp.together(expr).as_numer_denom()
+        poly = sp.Poly(sp.expand(expr), *unknowns)
+        content = sp.gcd_list(poly.coeffs()) if len(poly.coeffs()) > 1 else poly.coeffs()[0]
+        expr = sp.expand(sp.cancel(poly.as_expr() / content))
+        full = sp.Poly(expr, *gens)
+        terms_out = pt.normal_form(
+            (e, pt.parse_rational(str(c))) for e, c in full.terms())
+        # sign: the lex-leading coefficient (a polynomial in the parameters) has a positive
+        # grevlex-leading coefficient
+        n = len(unknowns)
+        lead_u = max(e[:n] for e, _ in terms_out)
+        lead_terms = [(e[n:], c) for e, c in terms_out if e[:n] == lead_u]
+        _, c_lead = max(lead_terms, key=lambda t: pt.grevlex_key(t[0]))
+        if c_lead < 0:
+            terms_out = tuple((e, -c) for e, c in terms_out)
+        out.append(terms_out)
+    n = len(unknowns)
+    return tuple(sorted(set(out), key=lambda p: (sorted((e[:n] for e, _ in p), reverse=True),
+                                                 [pt.grevlex_key(e) for e, _ in p])))
+
+
+@dataclass(frozen=True)
+class EliminationProblem(_PolynomialProblem):
     """Eliminate ``eliminate`` from the ideal of ``equations``; keep ``keep``.
 
     The answer is the reduced Groebner basis of the elimination ideal
@@ -29,23 +114,26 @@ class EliminationProblem:
     def gens(self) -> tuple[sp.Symbol, ...]:
         return self.eliminate + self.keep
 
-    def equation_terms(self) -> list[pt.PolyTerms]:
-        """Equations as exact term lists over ``gens`` (rational coefficients only)."""
-        out = []
-        for eq in self.equations:
-            poly = sp.Poly(sp.expand(eq), *self.gens, domain=sp.QQ)
-            out.append(
-                tuple((e, pt.parse_rational(str(c))) for e, c in poly.terms())
-            )
-        return out
+    @property
+    def split(self) -> int:
+        return len(self.eliminate)
 
-    def canonical_text(self) -> str:
-        names = ",".join(map(str, self.gens))
-        eqs = pt.canonical_text([pt.normal_form(t) for t in self.equation_terms()])
-        return f"elim={len(self.eliminate)};vars={names};eqs={eqs}"
 
-    def key(self, engine: str) -> str:
-        return hashlib.sha256(f"{engine}|{self.canonical_text()}".encode()).hexdigest()
+@dataclass
+class ParametricResult:
+    """Normalized lex basis over Q(parameters), with provenance."""
+
+    problem: ParametricProblem
+    basis: tuple[pt.PolyTerms, ...]
+    engine: str
+    seconds: float
+    cached: bool = field(default=False)
+
+    @property
+    def generators(self) -> list[sp.Expr]:
+        gens = self.problem.gens
+        return [sp.Add(*[sp.Rational(c.numerator, c.denominator) * sp.Mul(
+            *[v**k for v, k in zip(gens, e)]) for e, c in p]) for p in self.basis]
 
 
 @dataclass

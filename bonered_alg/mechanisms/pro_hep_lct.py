@@ -75,6 +75,8 @@ POSE = (Xu, Yu, Xd, Yd)
 POSE_UNITS = ("mm", "mm", "mm", "mm")
 # their Study coordinates, 004 eq. (13) with x = [1:0:0:0]
 POSE_TO_STUDY = {yu1: -Xu / 2, yu2: -Yu / 2, yd1: -Xd / 2, yd2: -Yd / 2}
+# and back (used by the forward kinematics)
+STUDY_TO_POSE = {Xu: -2 * yu1, Yu: -2 * yu2, Xd: -2 * yd1, Yd: -2 * yd2}
 JOINTS = (t1, w1, q4, q5)
 JOINT_UNITS = ("1 (t1 = tan(q2/2))", "1 (w1 = tan(q3/2))", "mm", "mm")
 
@@ -345,6 +347,19 @@ def verify(deriv) -> list:
         "printed Ji,2 = d(Gu[1],Gu[2])/d(q4,q5) repeats Ji,1; with qd = [t1, w1] (as printed "
         "in the same equation) it must be d(Gd[1],Gd[2])/d(t1,w1): d(Gd)/d(q4,q5) is the zero "
         "matrix, which would make the lower mechanism singular everywhere"))
+
+    # Sect. 3.4: working modes (IK branches) of the two planar mechanisms
+    branches = {}
+    for st in deriv.steps:
+        point = "Pu" if st.joint in (q4, q5) else "Pd"
+        branches[point] = branches.get(point, 1) * st.branches
+    ok34 = branches == {"Pu": 2, "Pd": 4}
+    out.append(Verdict(
+        "004 Sect. 3.4", "four working modes of the lower, two of the upper planar mechanism",
+        "confirmed-symbolic" if ok34 else "erratum", None,
+        f"IK branches from the ideals: upper {branches.get('Pu')}, lower {branches.get('Pd')} "
+        "(one quadratic generator per RRR chain, one for the rod ld4); the forward kinematics "
+        "has " + " x ".join(str(f.solutions) for f in deriv.fk) + " assembly modes"))
 
     # eq. (37): input singularity of the upper mechanism
     det_u = next(s for s in deriv.singularities if s.name == "det_Ji_Pu")

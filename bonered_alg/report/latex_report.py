@@ -139,6 +139,36 @@ def _section_ik(d) -> list[str]:
     return out
 
 
+def _section_fk(d) -> list[str]:
+    if not d.fk:
+        return [r"\section{Forward kinematics}", "Not derived: an ideal is not zero-dimensional "
+                "over the field of the joint and geometric parameters."]
+    out = [r"\section{Forward kinematics}",
+           "For each closure, the union of its leg ideals is a system in the platform's Study "
+           "coordinates with the active joints and the geometry as parameters. Its "
+           r"lexicographic Groebner basis over $\mathbb{Q}(\text{joints}, \text{geometry})$ "
+           "is triangular (zero-dimensional ideal), so all assembly modes follow by "
+           "back-substitution; denominators are cleared and each generator is made primitive. "
+           "Where a leading coefficient of the basis vanishes for particular joint values, the "
+           "specialization of the basis is not valid there (the analogue of the divisions "
+           "noted in 004 Sect. 3.3); the generated \texttt{fk} reports such points as "
+           "failures rather than returning values."]
+    total = 1
+    for f in d.fk:
+        total *= f.solutions or 0
+        out.append(rf"\subsection{{{tex_escape(f.closure)}}}")
+        out.append("Unknowns " + ", ".join(f"${latex(u)}$" for u in f.problem.unknowns)
+                   + "; parameters " + ", ".join(f"${latex(p)}$" for p in f.problem.parameters)
+                   + f". Hilbert dimension {f.dimension} over the parameter field; "
+                   f"{f.solutions} solutions counted with multiplicity (standard monomials).")
+        for k, g in enumerate(f.result.generators, 1):
+            out.append(broken_math(f"b_{{{k}}}", g, width=110))
+        out.append("Back-substitution order: " + ", ".join(
+            f"${latex(s.joint)}$ (degree {s.degree})" for s in f.steps) + ".")
+    out.append(f"Assembly modes of the whole: {total} (the product over the closures).")
+    return out
+
+
 def _section_velocity(d) -> list[str]:
     out = [r"\section{Velocity model and singularities}",
            r"With the IK generators $G$ (one per active joint), $J_i \dot q + J_o \dot X = 0$ "
@@ -219,7 +249,8 @@ def render_report(d) -> str:
             f"\\texttt{{generated/{tex_escape(m.name)}.py}} (IK kernels: {ops} operations "
             "after common-subexpression elimination).", ""]
     for part in (_section_mechanism, _section_chains, _section_elimination, _section_ik,
-                 _section_velocity, _section_verification, _section_interpretation):
+                 _section_fk, _section_velocity, _section_verification,
+                 _section_interpretation):
         body += part(d)
     body.append(r"\end{document}")
     return "\n".join(body) + "\n"
