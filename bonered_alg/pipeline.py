@@ -33,7 +33,7 @@ from .elimination.problem import (
     ParametricProblem,
     ParametricResult,
 )
-from .errors import NonClosingMechanismError
+from .errors import EngineTimeoutError, NonClosingMechanismError
 from .fileio import atomic_write_text
 from .kinematics.ik_plan import IKStep, mode_count, plan
 from .kinematics.singularities import FactoredPolynomial, discriminant, factored
@@ -92,6 +92,13 @@ class Derivation:
     fk: list[ClosureFK] = field(default_factory=list)
     verification: list[Verdict] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
+    fk_note: str = ""
+    extra: dict = field(default_factory=dict)  # mechanism-specific analyses (module.analyses)
+    pose_to_study: dict = field(default_factory=dict)
+
+    @property
+    def constants(self) -> dict[sp.Symbol, sp.Expr]:
+        return {c.symbol: c.value for c in self.mechanism.constants}
 
     def leg(self, name: str) -> LegResult:
         return next(r for r in self.legs if r.leg.name == name)
@@ -155,11 +162,14 @@ def _velocity_and_singularities(mech: Mechanism, steps: list[IKStep]):
     return velocity, out
 
 
+FK_BUDGET_S = 120.0
+
+
 def _forward_kinematics(mech: Mechanism, legs: list[LegResult], engine: Engine,
-                        budget_s: float, use_cache: bool) -> list[ClosureFK]:
+                        budget_s: float, use_cache: bool) -> tuple[list[ClosureFK], str]:
     """Per closure: lex basis of the union of its leg ideals in the pose unknowns over
     Q(active joints, geometry); zero-dimensional -> finitely many assembly modes, solved by
-    back-substitution.  Returns [] (no FK) if some closure is not zero-dimensional."""
+    back-substitution.  Returns ([], reason) when some closure cannot be solved that way."""
     out = []
     for closure in mech.closures:
         gens = [g for r in legs if r.closure is closure for g in r.result.generators]
@@ -169,17 +179,26 @@ def _forward_kinematics(mech: Mechanism, legs: list[LegResult], engine: Engine,
         problem = ParametricProblem(
             f"mechanism {mech.name!r}, closure {closure.name!r}: forward kinematics",
             tuple(gens), unknowns, params)
-        result = lex_basis(problem, engine, budget_s, use_cache)
+        try:
+            result = lex_basis(problem, engine, min(budget_s, FK_BUDGET_S), use_cache)
+        except EngineTimeoutError:
+            return [], (f"the lex basis of the {closure.name} exceeded its budget of "
+                        f"{min(budget_s, FK_BUDGET_S):g} s")
         n = len(unknowns)
         leading = [max(e[:n] for e, _ in p) for p in result.basis]
         dim = pt.dimension_from_leading_monomials(leading, n)
         if dim != 0:
-            return []
+            return [], (f"the ideal of the {closure.name} has dimension {dim} over the field "
+                        "of joints and geometry: no finite set of assembly modes")
         count = pt.count_standard_monomials(leading, n)
         pool = [(f"lex basis of the {closure.name}", g) for g in result.generators]
-        steps = plan(pool, unknowns, problem.context)
+        try:
+            steps = plan(pool, unknowns, problem.context)
+        except NotImplementedError as exc:
+            return [], (f"{exc} ({count} solutions; univariate steps of higher degree are "
+                        "not generated yet)")
         out.append(ClosureFK(closure.name, problem, result, dim, count, tuple(steps)))
-    return out
+    return out, ""
 
 
 def derive(name: str | ModuleType, engine: Engine | None = None,
@@ -210,10 +229,17 @@ def derive(name: str | ModuleType, engine: Engine | None = None,
     velocity, sing = _velocity_and_singularities(mech, steps)
     timings["ik plan, Jacobians, singularities"] = time.perf_counter() - t1
     t_fk = time.perf_counter()
-    fk = _forward_kinematics(mech, legs, engine, budget_s, use_cache)
+    fk, fk_note = _forward_kinematics(mech, legs, engine, budget_s, use_cache)
     timings["forward kinematics (lex bases)"] = time.perf_counter() - t_fk
     dhash = derivation_hash(name, module_file=module.__file__)
-    d = Derivation(mech, module, dhash, legs, steps, sing, velocity, fk, timings=timings)
+    d = Derivation(mech, module, dhash, legs, steps, sing, velocity, fk, timings=timings,
+                   fk_note=fk_note)
+    if hasattr(module, "analyses"):
+        t_extra = time.perf_counter()
+        d.extra = module.analyses(d, engine, budget_s, use_cache)
+        timings["mechanism-specific analyses"] = time.perf_counter() - t_extra
+    d.pose_to_study = (module.pose_to_study(d) if callable(getattr(module, "pose_to_study", None))
+                       else dict(module.POSE_TO_STUDY))
     t2 = time.perf_counter()
     d.verification = algebra_verdicts() + module.verify(d)
     timings["verification"] = time.perf_counter() - t2
@@ -227,13 +253,13 @@ def ik_module_source(d: Derivation) -> str:
         name=d.mechanism.name, title=d.mechanism.title, source=d.mechanism.source,
         derivation_hash=d.derivation_hash, generator=GENERATOR,
         parameters=list(d.mechanism.parameters.values()), pose=m.POSE,
-        pose_units=m.POSE_UNITS, pose_to_study=m.POSE_TO_STUDY, joints=m.JOINTS,
+        pose_units=m.POSE_UNITS, pose_to_study=d.pose_to_study, joints=m.JOINTS,
         joint_units=m.JOINT_UNITS, steps=d.steps,
         singularities=[(s.name, s.expression, s.meaning) for s in d.singularities],
         fk_steps=[s for f in d.fk for s in f.steps],
         fk_unknowns=[s.joint for f in d.fk for s in f.steps],
         fk_system=[g for f in d.fk for g in f.problem.equations],
-        study_to_pose=getattr(m, "STUDY_TO_POSE", None))
+        study_to_pose=getattr(m, "STUDY_TO_POSE", None), constants=d.constants)
     return write_ik_module(spec)
 
 

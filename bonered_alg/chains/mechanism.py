@@ -29,6 +29,20 @@ class Parameter:
 
 
 @dataclass(frozen=True)
+class Constant:
+    """An algebraic number used by a chain (e.g. sqrt(3) of an equilateral layout).
+
+    It enters the ideals as a variable bound by its minimal polynomial, so elimination stays
+    over Q; the generated code substitutes ``value``.
+    """
+
+    symbol: sp.Symbol
+    minimal_polynomial: sp.Expr
+    value: sp.Expr
+    description: str = ""
+
+
+@dataclass(frozen=True)
 class Coupling:
     """An extra polynomial relation of a leg (e.g. an actuation linkage), and what it frees."""
 
@@ -70,6 +84,9 @@ class Mechanism:
     extra_constraints: int = 0
     extra_constraints_note: str = ""
     units: dict[str, str] = field(default_factory=dict)
+    constants: tuple[Constant, ...] = ()
+    # Kutzbach-Gruebler lambda per subsystem (edge attribute "subsystem"); default planar/6
+    subsystem_lambda: dict[str, int] = field(default_factory=dict)
 
     # ----------------------------------------------------------------- symbols
     @property
@@ -78,7 +95,8 @@ class Mechanism:
 
     def declared(self) -> set[sp.Symbol]:
         pose = {s for c in self.closures for s in c.pose}
-        return set(self.geometric) | set(self.active) | set(self.passive) | pose
+        consts = {c.symbol for c in self.constants}
+        return set(self.geometric) | set(self.active) | set(self.passive) | pose | consts
 
     # ----------------------------------------------------------------- checks
     def validate(self) -> None:
@@ -159,12 +177,22 @@ class Mechanism:
         return loops
 
     def mobility(self) -> int:
-        """Kutzbach-Gruebler mobility ``lambda (n - 1 - j) + sum f_i - extra_constraints``."""
-        lam = 3 if self.planar else 6
-        n = self.topology.number_of_nodes()
-        edges = list(self.topology.edges(data=True))
-        f = sum(JOINT_DOF[d["joint"]] for _, _, d in edges)
-        return lam * (n - 1 - len(edges)) + f - self.extra_constraints
+        """Kutzbach-Gruebler mobility ``sum_s lambda_s (n_s - 1 - j_s) + f_s - extra``.
+
+        Each subsystem (edge attribute ``subsystem``) is counted with its own ``lambda`` (3 for
+        a planar one, 6 for a spatial one), since the spatial formula over-counts the
+        constraints of planar loops; without subsystems the whole graph uses 3 or 6.
+        """
+        groups: dict[str, list] = {}
+        for a, b, d in self.topology.edges(data=True):
+            groups.setdefault(d.get("subsystem", ""), []).append((a, b, d))
+        total = 0
+        for name, edges in groups.items():
+            lam = self.subsystem_lambda.get(name, 3 if self.planar else 6)
+            nodes = {x for a, b, _ in edges for x in (a, b)}
+            f = sum(JOINT_DOF[d["joint"]] for _, _, d in edges)
+            total += lam * (len(nodes) - 1 - len(edges)) + f
+        return total - self.extra_constraints
 
     def parameter_values(self) -> dict[str, float | None]:
         return {k: p.value for k, p in self.parameters.items()}

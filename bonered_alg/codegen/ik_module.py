@@ -34,6 +34,7 @@ class IKModuleSpec:
     fk_unknowns: Sequence[sp.Symbol] = ()
     study_to_pose: dict[sp.Symbol, sp.Expr] | None = None
     fk_system: Sequence[sp.Expr] = ()  # leg generators, for Gauss-Newton polishing of fk
+    constants: dict[sp.Symbol, sp.Expr] | None = None  # algebraic constants -> exact values
 
 
 def _literal(value) -> str:
@@ -64,6 +65,27 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
     return pivots + scales + [e for q in joints for e in rows[q]]
 
 
+def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
+    """The spec with every algebraic constant replaced by its exact value."""
+    c = spec.constants
+
+    def step(st: IKStep) -> IKStep:
+        return IKStep(st.joint, sp.expand(sp.sympify(st.generator).subs(c)), st.degree,
+                      sp.sympify(st.A).subs(c), sp.sympify(st.B).subs(c),
+                      sp.sympify(st.C).subs(c), st.source)
+
+    return IKModuleSpec(
+        **{**spec.__dict__,
+           "steps": [step(st) for st in spec.steps],
+           "fk_steps": [step(st) for st in spec.fk_steps],
+           "fk_system": [sp.sympify(g).subs(c) for g in spec.fk_system],
+           "singularities": [(n, sp.sympify(e).subs(c), m) for n, e, m in spec.singularities],
+           "pose_to_study": {k: sp.sympify(v).subs(c) for k, v in spec.pose_to_study.items()},
+           "study_to_pose": ({k: sp.sympify(v).subs(c) for k, v in spec.study_to_pose.items()}
+                             if spec.study_to_pose else None),
+           "constants": None})
+
+
 def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
                   par: Sequence[sp.Symbol], sub: dict) -> tuple[list[Kernel], list[str], list]:
     """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows."""
@@ -88,6 +110,8 @@ def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symb
 
 def write_ik_module(spec: IKModuleSpec) -> str:
     """Source text of ``generated/<name>.py`` (deterministic for equal inputs)."""
+    if spec.constants:
+        spec = _with_constants(spec)
     par = [sp.Symbol(p.name, real=True) for p in spec.parameters]
     sub = dict(spec.pose_to_study)
     study = list(sub)

@@ -35,10 +35,12 @@ def leg_problem(mech: Mechanism, closure: Closure, leg: Leg) -> EliminationProbl
     passive = tuple(s for s in mech.passive if s in syms)
     active = tuple(s for s in mech.active if s in syms)
     geometric = tuple(s for s in mech.geometric if s in syms)
+    constants = tuple(c for c in mech.constants if c.symbol in syms)
+    eqs += [sp.expand(c.minimal_polynomial) for c in constants]
     pose = tuple(closure.pose)
     return EliminationProblem(
         context=f"mechanism {mech.name!r}, closure {closure.name!r}, leg {leg.name!r}",
         equations=tuple(eqs),
         eliminate=passive + (MU,),
-        keep=pose + active + geometric,
+        keep=pose + active + geometric + tuple(c.symbol for c in constants),
     )

@@ -56,14 +56,16 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
                 deg = sp.degree(g, q)
                 if deg not in (1, 2):
                     continue
-                cand = (deg, sp.count_ops(g), str(q), src, q, g)
+                rank = 0 if deg == 1 else (1 if _definite(sp.Poly(g, q).coeff_monomial(q**2))
+                                           else 2)
+                cand = (rank, sp.count_ops(g), str(q), src, q, g, deg)
                 if best is None or cand[:3] < best[:3]:
                     best = cand
         if best is None:
             raise NotImplementedError(
                 f"{context}: no generator of degree 1 or 2 in any of "
                 f"{[str(q) for q in remaining]} once {[str(q) for q in solved]} are known")
-        deg, _, _, src, q, g = best
+        _, _, _, src, q, g, deg = best
         poly = sp.Poly(sp.expand(g), q)
         coeff = {m[0]: c for m, c in zip(poly.monoms(), poly.coeffs())}
         steps.append(IKStep(q, g, deg, sp.factor(coeff.get(2, 0)), sp.factor(coeff.get(1, 0)),
@@ -71,6 +73,19 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
         solved.append(q)
         remaining.remove(q)
     return steps
+
+
+def _definite(a: sp.Expr) -> bool:
+    """True when ``a`` is visibly positive for all real values: a positive constant plus
+    even monomials with positive coefficients (e.g. ``1 + x**2``).  Quadratic steps whose
+    leading coefficient cannot vanish are preferred: they never degenerate inside the
+    workspace."""
+    poly = sp.Poly(sp.expand(a), *sorted(a.free_symbols, key=str)) if a.free_symbols else None
+    if poly is None:
+        return bool(a.is_positive)
+    terms = poly.terms()
+    has_const = any(all(e == 0 for e in m) for m, _ in terms)
+    return has_const and all(c > 0 and all(e % 2 == 0 for e in m) for m, c in terms)
 
 
 def mode_count(steps: Sequence[IKStep]) -> int:

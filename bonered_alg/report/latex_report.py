@@ -127,8 +127,9 @@ def _section_ik(d) -> list[str]:
            r"$A q^2 + B q + C = 0$ has the roots $q = (-B \pm \sqrt{B^2-4AC})/(2A)$; "
            r"the sign is the working mode of that step ($+$: mode bit 0). "
            f"Number of working modes: {d.modes}. Pose coordinates: "
-           + ", ".join(f"${latex(k)} = {latex(v)}$" for k, v in d.module.POSE_TO_STUDY.items())
-           + " (004 eq. 13 with $x = [1:0:0:0]$)."]
+           + ", ".join(f"${latex(k)} = {latex(v)}$" for k, v in d.pose_to_study.items())
+           + " (" + tex_escape(getattr(d.module, "POSE_TO_STUDY_SOURCE",
+                                       "004 eq. 13 with x = [1:0:0:0]")) + ")."]
     for s in d.steps:
         out.append(rf"\paragraph{{Joint ${latex(s.joint)}$}} from {tex_escape(s.source)}, "
                    f"degree {s.degree}:")
@@ -141,8 +142,8 @@ def _section_ik(d) -> list[str]:
 
 def _section_fk(d) -> list[str]:
     if not d.fk:
-        return [r"\section{Forward kinematics}", "Not derived: an ideal is not zero-dimensional "
-                "over the field of the joint and geometric parameters."]
+        return [r"\section{Forward kinematics}", "Not generated: " + tex_escape(d.fk_note)
+                + "."]
     out = [r"\section{Forward kinematics}",
            "For each closure, the union of its leg ideals is a system in the platform's Study "
            "coordinates with the active joints and the geometry as parameters. Its "
@@ -249,8 +250,11 @@ def render_report(d) -> str:
             f"\\texttt{{generated/{tex_escape(m.name)}.py}} (IK kernels: {ops} operations "
             "after common-subexpression elimination).", ""]
     for part in (_section_mechanism, _section_chains, _section_elimination, _section_ik,
-                 _section_fk, _section_velocity, _section_verification,
-                 _section_interpretation):
+                 _section_fk, _section_velocity):
+        body += part(d)
+    if hasattr(d.module, "report_sections"):
+        body += d.module.report_sections(d)
+    for part in (_section_verification, _section_interpretation):
         body += part(d)
     body.append(r"\end{document}")
     return "\n".join(body) + "\n"
