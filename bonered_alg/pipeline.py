@@ -174,11 +174,16 @@ def _forward_kinematics(mech: Mechanism, legs: list[LegResult], engine: Engine,
     for closure in mech.closures:
         gens = [g for r in legs if r.closure is closure for g in r.result.generators]
         syms = set().union(*(g.free_symbols for g in gens))
-        unknowns = tuple(y for y in closure.pose if y in syms)
+        pose_unknowns = tuple(y for y in closure.pose if y in syms)
+        # algebraic constants are the last (lowest) unknowns, bound by their minimal
+        # polynomials; they are not solved for but substituted (generators stay valid)
+        consts = [c for c in mech.constants if c.symbol in syms]
+        unknowns = pose_unknowns + tuple(c.symbol for c in consts)
         params = tuple(s for s in (*mech.active, *mech.geometric) if s in syms)
         problem = ParametricProblem(
             f"mechanism {mech.name!r}, closure {closure.name!r}: forward kinematics",
-            tuple(gens), unknowns, params)
+            tuple(dict.fromkeys(gens + [sp.expand(c.minimal_polynomial) for c in consts])),
+            unknowns, params)
         try:
             result = lex_basis(problem, engine, min(budget_s, FK_BUDGET_S), use_cache)
         except EngineTimeoutError:
@@ -191,9 +196,13 @@ def _forward_kinematics(mech: Mechanism, legs: list[LegResult], engine: Engine,
             return [], (f"the ideal of the {closure.name} has dimension {dim} over the field "
                         "of joints and geometry: no finite set of assembly modes")
         count = pt.count_standard_monomials(leading, n)
-        pool = [(f"lex basis of the {closure.name}", g) for g in result.generators]
+        for c in consts:
+            count //= int(sp.degree(c.minimal_polynomial, c.symbol))
+        const_syms = {c.symbol for c in consts}
+        pool = [(f"lex basis of the {closure.name}", g) for g in result.generators
+                if not g.free_symbols <= const_syms | set(params)]
         try:
-            steps = plan(pool, unknowns, problem.context)
+            steps = plan(pool, pose_unknowns, problem.context)
         except NotImplementedError as exc:
             return [], (f"{exc} ({count} solutions; univariate steps of higher degree are "
                         "not generated yet)")
@@ -229,7 +238,10 @@ def derive(name: str | ModuleType, engine: Engine | None = None,
     velocity, sing = _velocity_and_singularities(mech, steps)
     timings["ik plan, Jacobians, singularities"] = time.perf_counter() - t1
     t_fk = time.perf_counter()
-    fk, fk_note = _forward_kinematics(mech, legs, engine, budget_s, use_cache)
+    if getattr(module, "FORWARD_KINEMATICS_PENDING", ""):
+        fk, fk_note = [], module.FORWARD_KINEMATICS_PENDING
+    else:
+        fk, fk_note = _forward_kinematics(mech, legs, engine, budget_s, use_cache)
     timings["forward kinematics (lex bases)"] = time.perf_counter() - t_fk
     dhash = derivation_hash(name, module_file=module.__file__)
     d = Derivation(mech, module, dhash, legs, steps, sing, velocity, fk, timings=timings,

@@ -1,20 +1,22 @@
-"""The derivation report compiles with a real LaTeX toolchain (pdflatex via latexmk)."""
+"""The derivation reports compile with a real LaTeX toolchain (pdflatex via latexmk)."""
 
 import shutil
 import subprocess
 
 import pytest
 
+from bonered_alg.mechanisms import REGISTRY
 from tests.conftest import ROOT
 
 
 @pytest.mark.skipif(shutil.which("latexmk") is None, reason="no LaTeX toolchain")
-def test_report_compiles(tmp_path):
-    shutil.copy(ROOT / "derivations" / "pro_hep_lct.tex", tmp_path)
+@pytest.mark.parametrize("name", REGISTRY)
+def test_report_compiles(tmp_path, name):
+    shutil.copy(ROOT / "derivations" / f"{name}.tex", tmp_path)
     out = subprocess.run(["latexmk", "-pdf", "-interaction=nonstopmode", "-halt-on-error",
-                          "pro_hep_lct.tex"], cwd=tmp_path, capture_output=True, text=True,
+                          f"{name}.tex"], cwd=tmp_path, capture_output=True, text=True,
                          timeout=600)
     assert out.returncode == 0, out.stdout[-3000:]
-    assert (tmp_path / "pro_hep_lct.pdf").stat().st_size > 10_000
-    log = (tmp_path / "pro_hep_lct.log").read_text(errors="replace")
+    assert (tmp_path / f"{name}.pdf").stat().st_size > 10_000
+    log = (tmp_path / f"{name}.log").read_text(errors="replace")
     assert "Undefined control sequence" not in log

@@ -134,8 +134,13 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
     jo = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.pose))
     jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
-    kernels.append(kernel("_jac", args, _triangular_jacobian(spec.steps, g_pose, spec.joints,
-                                                             spec.pose),
+    tri = _triangular_jacobian(spec.steps, g_pose, spec.joints, spec.pose)
+    n_steps = len(spec.steps)
+    linear = [k for k, st in enumerate(spec.steps) if st.degree == 1]
+    kernels.append(kernel("_pivots", args, [tri[k] for k in linear]
+                          + [tri[n_steps + k] for k in linear],
+                          "Pivots dG_k/dq_k and row scales of the linear IK steps."))
+    kernels.append(kernel("_jac", args, tri,
                           "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
                           "substitution: Ji is triangular in the solve order)."))
     kernels.append(kernel("_ji", args, list(ji), "Input Jacobian dG/dq, row-major."))

@@ -21,7 +21,8 @@ STATUS = {
                        "vanishing linear coefficient",
     ON_BOUNDARY: "on the workspace boundary of a leg (double root, input singularity): the "
                  "joint values are valid, the Jacobian is not",
-    INPUT_SINGULAR: "input singularity: det Ji = 0, dq/dX is unbounded",
+    INPUT_SINGULAR: "input singularity: a pivot of Ji vanishes (det Ji = 0); the joint "
+                    "value is undetermined or unbounded and dq/dX is not defined",
     INVALID_INPUT: "non-finite pose coordinate",
 }
 _DISC_RTOL = 1e-10
@@ -120,8 +121,29 @@ def _backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False)
 
 
 def _solve(pose, mode, par, with_status=False):
-    """Inverse kinematics of one working mode."""
-    return _backsubstitute(pose, _STEPS, _SOLVE_INDEX, len(JOINTS), mode, par, with_status)
+    """Inverse kinematics of one working mode; NaN at input singularities of linear steps.
+
+    A linear step ``B q + C = 0`` is singular where its pivot ``B = dG/dq`` vanishes
+    relative to the generator's derivatives (the joint is then undetermined or infinite).
+    """
+    q, status = _backsubstitute(pose, _STEPS, _SOLVE_INDEX, len(JOINTS), mode, par,
+                                with_status)
+    if not any(degree == 1 for degree, _, _ in _STEPS):
+        return q, status
+    shape = pose.shape[:-1]
+    with numpy.errstate(all="ignore"):
+        values = _pivots(*[pose[..., i] for i in range(len(POSE))],
+                         *[q[..., i] for i in range(len(JOINTS))], *par)
+        half = len(values) // 2
+        singular = numpy.zeros(shape, dtype=bool)
+        for d, sc in zip(values[:half], values[half:]):
+            singular |= numpy.abs(d) <= _DET_RTOL * numpy.abs(sc)
+    singular &= numpy.all(numpy.isfinite(q), axis=-1)
+    q[singular] = numpy.nan
+    if with_status:
+        status = numpy.where(singular & (status == OK), INPUT_SINGULAR, status).astype(
+            numpy.int8)
+    return q, status
 
 
 def ik(pose, mode=0, **params):

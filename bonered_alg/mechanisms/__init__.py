@@ -5,7 +5,7 @@ from __future__ import annotations
 import importlib
 from types import ModuleType
 
-REGISTRY = ("pro_hep_lct",)
+REGISTRY = ("pro_hep_lct", "planar_tripod")
 
 
 def load(name: str) -> ModuleType:
