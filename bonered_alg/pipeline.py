@@ -271,7 +271,8 @@ def ik_module_source(d: Derivation) -> str:
         fk_steps=[s for f in d.fk for s in f.steps],
         fk_unknowns=[s.joint for f in d.fk for s in f.steps],
         fk_system=[g for f in d.fk for g in f.problem.equations],
-        study_to_pose=getattr(m, "STUDY_TO_POSE", None), constants=d.constants)
+        study_to_pose=getattr(m, "STUDY_TO_POSE", None), constants=d.constants,
+        limits=m.limits(d) if callable(getattr(m, "limits", None)) else ())
     return write_ik_module(spec)
 
 

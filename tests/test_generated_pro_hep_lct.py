@@ -4,7 +4,6 @@ and against mpmath evaluation of the symbolic roots (layer 3)."""
 import subprocess
 import sys
 
-import mpmath
 import numpy as np
 import pytest
 import sympy as sp
@@ -147,7 +146,6 @@ def test_jacobian_is_implicit_derivative(gen):
 
 def test_against_mpmath_50_digits(gen, derivation):
     """Layer 3: the symbolic roots evaluated at 50 digits vs. the generated float code."""
-    mpmath.mp.dps = 50
     mod = derivation.module
     poses, _ = reachable_poses(10)
     par = {sp.Symbol(k, real=True): sp.Float(v, 50) for k, v in GEOMETRY.items()}

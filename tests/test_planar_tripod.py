@@ -3,7 +3,6 @@ symbolic derivation at 50 digits (layer 3) and the verdicts against the paper (l
 
 import importlib
 
-import mpmath
 import numpy as np
 import pytest
 import sympy as sp
@@ -32,7 +31,7 @@ def poses(n):
 
 def test_ik_against_independent_model(m):
     p = poses(300)
-    q = m.ik(p)
+    q = m.ik(p, limits=False)
     ref = np.array([ik_independent(pi) for pi in p])
     assert np.max(np.abs(q - ref)) < 1e-9
 
@@ -40,7 +39,7 @@ def test_ik_against_independent_model(m):
 def test_jacobian_against_finite_differences(m):
     h = np.array([1e-4, 1e-4, 1e-4, 1e-7, 1e-7, 1e-7])
     for pose in poses(12):
-        J = m.jacobian(pose)
+        J = m.jacobian(pose, limits=False)
         fd = np.empty((6, 6))
         for k in range(6):
             e = np.zeros(6)
@@ -50,11 +49,10 @@ def test_jacobian_against_finite_differences(m):
 
 
 def test_against_mpmath_50_digits(m, d):
-    mpmath.mp.dps = 50
     mod = d.module
     par = {sp.Symbol(k, real=True): sp.Float(v, 50) for k, v in m.PARAMETERS.items()}
     for pose in poses(5):
-        q = m.ik(pose)
+        q = m.ik(pose, limits=False)
         vals = dict(par)
         vals.update({s: sp.Float(v, 50) for s, v in zip(mod.POSE, pose)})
         study = {k: sp.N(sp.sympify(v).subs(d.constants).subs(vals), 50)
@@ -109,7 +107,34 @@ def test_singular_orientation_of_the_planar_part(m):
     """000 eq. (38): gamma = -pi/3 (and 2 pi/3) makes det A vanish: q1..q3 blow up."""
     for gamma in (-np.pi / 3, 2 * np.pi / 3):
         pose = np.array([0.0, 0.0, 200.0, 0.0, 0.0, gamma])
-        assert m.ik_status(pose) == m.INPUT_SINGULAR
-        assert np.all(np.isnan(m.ik(pose)))
-        assert m.jacobian_status(pose) == m.INPUT_SINGULAR
-    assert m.ik_status(np.array([0.0, 0.0, 200.0, 0.0, 0.0, -np.pi / 3 + 1e-3])) == m.OK
+        assert m.ik_status(pose, limits=False) == m.INPUT_SINGULAR
+        assert np.all(np.isnan(m.ik(pose, limits=False)))
+        assert m.jacobian_status(pose, limits=False) == m.INPUT_SINGULAR
+    near = np.array([0.0, 0.0, 200.0, 0.0, 0.0, -np.pi / 3 + 1e-3])
+    assert m.ik_status(near, limits=False) == m.OK
+
+
+def test_limits_of_table_1(m):
+    """000 Table 1: strokes 175-250 mm, revolute +-45 deg, spherical +-20 deg."""
+    home = np.array([0.0, 0.0, 200.0, 0.0, 0.0, 0.0])
+    assert m.ik_status(home) == m.OK
+    # z = 260: the legs (q4 = q5 = q6 = z at alpha = beta = 0) exceed 250 mm
+    high = home + np.array([0, 0, 60.0, 0, 0, 0])
+    assert m.ik_status(high) == m.STROKE_LIMIT and np.all(np.isnan(m.ik(high)))
+    assert np.allclose(m.ik(high, limits=False)[3:], 260.0)
+    # alpha = 0.37 rad at z = 180: strokes fine, the spherical joints D1, D3 tilt past 20 deg
+    tilt = np.array([0.0, 0.0, 180.0, 0.37, 0.0, 0.0])
+    q = m.ik(tilt, limits=False)
+    vals = m.limit_values(tilt, q)
+    assert np.all((q >= 175) & (q <= 250))
+    assert np.degrees(vals["phi_s1"]) > 20 and m.ik_status(tilt) == m.PASSIVE_JOINT_LIMIT
+    # independent value of the spherical angle of D1: angle between MP2's normal and C1D1
+    from independent_planar_tripod import RA, RB, mp1_pose, rot
+
+    x1, y1, g1 = mp1_pose(tilt)
+    r2 = rot("z", -g1) @ rot("z", tilt[5]) @ rot("y", tilt[4]) @ rot("x", tilt[3])
+    d1 = rot("z", -g1) @ (np.array([0, 0, tilt[2]]) + rot("x", tilt[3]) @ [RB, 0, 0]
+                          - np.array([x1, y1, 0]))
+    leg = d1 - np.array([RA, 0, 0])
+    angle = np.arccos(r2[:, 2] @ leg / np.linalg.norm(leg))
+    assert abs(angle - vals["phi_s1"]) < 1e-12

@@ -35,6 +35,8 @@ class IKModuleSpec:
     study_to_pose: dict[sp.Symbol, sp.Expr] | None = None
     fk_system: Sequence[sp.Expr] = ()  # leg generators, for Gauss-Newton polishing of fk
     constants: dict[sp.Symbol, sp.Expr] | None = None  # algebraic constants -> exact values
+    # (name, expression in POSE/JOINTS/parameters, lower, upper, kind, unit, source)
+    limits: Sequence[tuple] = ()
 
 
 def _literal(value) -> str:
@@ -80,6 +82,7 @@ def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
            "fk_steps": [step(st) for st in spec.fk_steps],
            "fk_system": [sp.sympify(g).subs(c) for g in spec.fk_system],
            "singularities": [(n, sp.sympify(e).subs(c), m) for n, e, m in spec.singularities],
+           "limits": [(lim[0], sp.sympify(lim[1]).subs(c), *lim[2:]) for lim in spec.limits],
            "pose_to_study": {k: sp.sympify(v).subs(c) for k, v in spec.pose_to_study.items()},
            "study_to_pose": ({k: sp.sympify(v).subs(c) for k, v in spec.study_to_pose.items()}
                              if spec.study_to_pose else None),
@@ -147,6 +150,9 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     kernels.append(kernel("_jo", args, list(jo), "dG/dX for the pose coordinates, row-major."))
     kernels.append(kernel("_jo_study", args, list(jo_study),
                           "Output Jacobian dG/dy in Study coordinates, row-major."))
+    if spec.limits:
+        kernels.append(kernel("_limit_values", args, [sp.sympify(lim[1]) for lim in spec.limits],
+                              "Quantities bounded by LIMITS (joint strokes, passive angles)."))
     sing_src = []
     for name, expr, meaning in spec.singularities:
         kern = kernel(f"_sing_{name}", args, [sp.sympify(expr).subs(sub)], meaning)
@@ -209,6 +215,11 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         "IK_GENERATORS = (",
         *[f"    ({str(st.joint)!r}, {sp.sstr(sp.expand(st.generator))!r}),"
           for st in spec.steps],
+        ")",
+        "# (name, lower, upper, kind, unit, source); kind 'stroke' or 'passive'",
+        "LIMITS = (",
+        *[f"    ({lim[0]!r}, {float(lim[2])!r}, {float(lim[3])!r}, {lim[4]!r}, {lim[5]!r}, "
+          f"{lim[6]!r})," for lim in spec.limits],
         ")",
         "SINGULARITY_MEANING = {",
         *[f"    {name!r}: {meaning!r}," for name, _, meaning in spec.singularities],

@@ -13,6 +13,8 @@ JOINT_AT_INFINITY = 2
 ON_BOUNDARY = 3
 INPUT_SINGULAR = 4
 INVALID_INPUT = 5
+STROKE_LIMIT = 6
+PASSIVE_JOINT_LIMIT = 7
 STATUS = {
     OK: "ok",
     NO_REAL_SOLUTION: "no real solution: the pose is outside the reach of the leg that "
@@ -24,6 +26,8 @@ STATUS = {
     INPUT_SINGULAR: "input singularity: a pivot of Ji vanishes (det Ji = 0); the joint "
                     "value is undetermined or unbounded and dq/dX is not defined",
     INVALID_INPUT: "non-finite pose coordinate",
+    STROKE_LIMIT: "an actuator stroke is outside its range (LIMITS, kind 'stroke')",
+    PASSIVE_JOINT_LIMIT: "a passive joint angle is outside its range (LIMITS, kind 'passive')",
 }
 _DISC_RTOL = 1e-10
 _DET_RTOL = 1e-12
@@ -120,16 +124,59 @@ def _backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False)
     return out, status
 
 
-def _solve(pose, mode, par, with_status=False):
-    """Inverse kinematics of one working mode; NaN at input singularities of linear steps.
+def _solve(pose, mode, par, with_status=False, limits=True):
+    """Inverse kinematics of one working mode; NaN at input singularities of linear steps
+    and, with ``limits``, outside the ranges of ``LIMITS``.
 
     A linear step ``B q + C = 0`` is singular where its pivot ``B = dG/dq`` vanishes
     relative to the generator's derivatives (the joint is then undetermined or infinite).
     """
     q, status = _backsubstitute(pose, _STEPS, _SOLVE_INDEX, len(JOINTS), mode, par,
                                 with_status)
-    if not any(degree == 1 for degree, _, _ in _STEPS):
-        return q, status
+    if any(degree == 1 for degree, _, _ in _STEPS):
+        q, status = _pivot_check(pose, q, status, par, with_status)
+    if limits and LIMITS:
+        q, status = _limit_check(pose, q, status, par, with_status)
+    return q, status
+
+
+def _limit_check(pose, q, status, par, with_status):
+    shape = pose.shape[:-1]
+    with numpy.errstate(all="ignore"):
+        values = _limit_values(*[pose[..., i] for i in range(len(POSE))],
+                               *[q[..., i] for i in range(len(JOINTS))], *par)
+    violated = {"stroke": numpy.zeros(shape, dtype=bool),
+                "passive": numpy.zeros(shape, dtype=bool)}
+    for v, (_, lower, upper, kind, _, _) in zip(values, LIMITS):
+        v = numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+        violated[kind] |= (v < lower) | (v > upper)
+    ok = numpy.all(numpy.isfinite(q), axis=-1)
+    out = violated["stroke"] | violated["passive"]
+    q[out] = numpy.nan
+    if with_status:
+        status = numpy.where(ok & violated["passive"] & (status == OK), PASSIVE_JOINT_LIMIT,
+                             status)
+        status = numpy.where(ok & violated["stroke"] & (status != INVALID_INPUT)
+                             & ((status == OK) | (status == PASSIVE_JOINT_LIMIT)),
+                             STROKE_LIMIT, status).astype(numpy.int8)
+    return q, status
+
+
+def limit_values(pose, q, **params):
+    """The quantities bounded by ``LIMITS`` at ``(pose, q)``: dict name -> array."""
+    pose = _pose("limit_values", pose)
+    shape = pose.shape[:-1]
+    q = _joints("limit_values", q, shape)
+    par = _params("limit_values", params)
+    if not LIMITS:
+        return {}
+    values = _limit_values(*[pose[..., i] for i in range(len(POSE))],
+                           *[q[..., i] for i in range(len(JOINTS))], *par)
+    return {lim[0]: numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+            for lim, v in zip(LIMITS, values)}
+
+
+def _pivot_check(pose, q, status, par, with_status):
     shape = pose.shape[:-1]
     with numpy.errstate(all="ignore"):
         values = _pivots(*[pose[..., i] for i in range(len(POSE))],
@@ -146,27 +193,28 @@ def _solve(pose, mode, par, with_status=False):
     return q, status
 
 
-def ik(pose, mode=0, **params):
+def ik(pose, mode=0, limits=True, **params):
     """Active joints ``JOINTS`` for poses ``(..., len(POSE))``; NaN where unreachable.
 
     ``mode`` selects the working mode (see ``MODE_BITS``); ``ik_status`` says why a result is
-    NaN.  Geometric parameters are keyword arguments (defaults: ``PARAMETERS``).
+    NaN.  With ``limits`` (default) poses outside the ranges of ``LIMITS`` are unreachable
+    too.  Geometric parameters are keyword arguments (defaults: ``PARAMETERS``).
     """
-    q, _ = _solve(_pose("ik", pose), _mode("ik", mode), _params("ik", params))
+    q, _ = _solve(_pose("ik", pose), _mode("ik", mode), _params("ik", params), False, limits)
     return q
 
 
-def ik_status(pose, mode=0, **params):
-    """Status code per pose (``STATUS`` explains each code) for ``ik(pose, mode)``."""
+def ik_status(pose, mode=0, limits=True, **params):
+    """Status code per pose (``STATUS`` explains each code) for ``ik(pose, mode, limits)``."""
     _, status = _solve(_pose("ik_status", pose), _mode("ik_status", mode),
-                       _params("ik_status", params), with_status=True)
+                       _params("ik_status", params), True, limits)
     return status
 
 
-def ik_all(pose, **params):
+def ik_all(pose, limits=True, **params):
     """All working modes: array ``(..., MODES, len(JOINTS))``; NaN where a mode is unreachable."""
     pose, par = _pose("ik_all", pose), _params("ik_all", params)
-    return numpy.stack([_solve(pose, m, par)[0] for m in range(MODES)], axis=-2)
+    return numpy.stack([_solve(pose, m, par, False, limits)[0] for m in range(MODES)], axis=-2)
 
 
 def _matrices(pose, q, par):
@@ -197,26 +245,26 @@ def output_jacobian(pose, q, **params):
     return _matrices(pose, q, _params("output_jacobian", params))[2]
 
 
-def jacobian(pose, mode=0, **params):
+def jacobian(pose, mode=0, limits=True, **params):
     """``J = dq/dX`` (..., len(JOINTS), len(POSE)), X as listed in POSE; NaN where invalid.
 
     ``J = -Ji^{-1} dG/dX``, solved by forward substitution (Ji is triangular in the order the
     IK solves the joints); NaN where the IK fails or a pivot ``dG_k/dq_k`` vanishes relative
     to its row (an input singularity), see ``jacobian_status``.
     """
-    J, _ = _jacobian("jacobian", pose, mode, params, False)
+    J, _ = _jacobian("jacobian", pose, mode, params, False, limits)
     return J
 
 
-def jacobian_status(pose, mode=0, **params):
+def jacobian_status(pose, mode=0, limits=True, **params):
     """Status per pose for ``jacobian``: an IK status, or INPUT_SINGULAR."""
-    _, status = _jacobian("jacobian_status", pose, mode, params, True)
+    _, status = _jacobian("jacobian_status", pose, mode, params, True, limits)
     return status
 
 
-def _jacobian(func, pose, mode, params, with_status):
+def _jacobian(func, pose, mode, params, with_status, limits=True):
     pose, mode, par = _pose(func, pose), _mode(func, mode), _params(func, params)
-    q, status = _solve(pose, mode, par, with_status)
+    q, status = _solve(pose, mode, par, with_status, limits)
     shape = pose.shape[:-1]
     n, m = len(JOINTS), len(POSE)
     cols = [pose[..., i] for i in range(m)]

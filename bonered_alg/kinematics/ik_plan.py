@@ -68,11 +68,18 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
         _, _, _, src, q, g, deg = best
         poly = sp.Poly(sp.expand(g), q)
         coeff = {m[0]: c for m, c in zip(poly.monoms(), poly.coeffs())}
-        steps.append(IKStep(q, g, deg, sp.factor(coeff.get(2, 0)), sp.factor(coeff.get(1, 0)),
-                            sp.factor(coeff.get(0, 0)), src))
+        steps.append(IKStep(q, g, deg, *(_compact(coeff.get(k, sp.Integer(0)))
+                                          for k in (2, 1, 0)), src))
         solved.append(q)
         remaining.remove(q)
     return steps
+
+
+def _compact(c: sp.Expr, max_terms: int = 40) -> sp.Expr:
+    """Factored when small (readable reports, fewer operations); large coefficients are left
+    expanded: multivariate factorization (Wang's algorithm) can take minutes on them."""
+    c = sp.expand(c)
+    return sp.factor(c) if len(sp.Add.make_args(c)) <= max_terms else c
 
 
 def _definite(a: sp.Expr) -> bool:

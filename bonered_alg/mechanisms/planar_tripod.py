@@ -323,6 +323,13 @@ def _random_poses(n, seed=3):
 
 def verify(deriv) -> list:
     """Verdicts for 000 eq. (5), (9), (10), (16), (17), (21), (24)-(26), (37)-(38), (42)."""
+    import mpmath
+
+    with mpmath.workdps(40):  # independent of the caller's mpmath precision: deterministic
+        return _verify(deriv)
+
+
+def _verify(deriv) -> list:
     import numpy as np
 
     from ..verification import Verdict, constant_ratio
@@ -413,7 +420,7 @@ def verify(deriv) -> list:
         err = max(errs)
         ref = f"000 eq. ({17 if k < 3 else 21}), q{k + 1}"
         out.append(Verdict(ref, f"IK of q{k + 1} in the pose (x, y, z, alpha, beta, gamma)",
-                           "confirmed-numeric" if err < 1e-9 else "erratum", err,
+                           "confirmed-numeric" if err < 1e-9 else "erratum", float(f"{err:.2e}"),
                            "derived IK vs printed formula at 40 random poses "
                            "(|x|,|y| < 40 mm, z in [150, 230] mm, |alpha|,|beta| < 0.3, "
                            "|gamma| < 0.8 rad; ra = rb = 190 mm)"))
@@ -435,7 +442,7 @@ def verify(deriv) -> list:
     cols = ["x", "y", "z", "alpha", "beta", "gamma"]
     out.append(Verdict(
         "000 eq. (24)-(26)", "planar velocity model J_A q' = J_B X'",
-        "confirmed-numeric" if err26 < 1e-9 else "erratum", err26,
+        "confirmed-numeric" if err26 < 1e-9 else "erratum", float(f"{err26:.2e}"),
         "J_A^-1 J_B (q1..q3 from the derived IK) vs the derivative of the derived IK at 40 "
         "poses" + ("" if err26 < 1e-9 else
                    f"; largest difference in row q{worst_entry[0] + 1}, column "
@@ -475,4 +482,32 @@ def verify(deriv) -> list:
                        "eq. (34) uses a11, a12, a21, a22, which the paper never defines, and "
                        "'equation (35)' where (27) is meant; the derived dq/dX is checked "
                        "against finite differences of an independent model instead"))
+    return out
+
+
+def limits(deriv) -> list[tuple]:
+    """Table 1 of 000: strokes 175-250 mm (read as applying to all six actuators: the table
+    gives one range for "q" and the home pose has q1 = q2 = q3 = 2 ra / sqrt(3) = 219 mm),
+    revolute joints +-45 deg and spherical joints +-20 deg (eq. 45-46: the angle of each leg
+    to the MP1 normal, and to the MP2 normal)."""
+    par = deriv.extra["parasitic"]
+    fill = {ta: sp.tan(alpha / 2), tb: sp.tan(beta / 2), z2: z}
+    xp, yp, gp = (sp.sympify(par[v]).subs(fill) for v in (x2, y2, tg2))
+    rot2 = sp.rot_axis3(-2 * sp.atan(gp)) * sp.rot_axis2(-beta) * sp.rot_axis1(-alpha)
+    t2 = sp.Matrix([xp, yp, z])
+    normal2 = rot2 * sp.Matrix([0, 0, 1])
+    c_pts = [(ra, 0, 0), (0, ra, 0), (-ra, 0, 0)]
+    d_pts = [(rb, 0, 0), (0, rb, 0), (-rb, 0, 0)]
+    lo, hi = LIMITS["q_tripod"]
+    out = [(f"q{k}", q, lo, hi, "stroke", "mm", "000 Table 1 (q_min, q_max)")
+           for k, q in enumerate(JOINTS, 1)]
+    r_lo, r_hi = (sp.rad(v) for v in LIMITS["revolute_deg"])
+    s_lo, s_hi = (sp.rad(v) for v in LIMITS["spherical_deg"])
+    for k in range(3):
+        leg_vec = t2 + rot2 * sp.Matrix(d_pts[k]) - sp.Matrix(c_pts[k])
+        length = sp.sqrt(leg_vec.dot(leg_vec))
+        out.append((f"phi_r{k + 1}", sp.acos(leg_vec[2] / length), r_lo, r_hi, "passive",
+                    "rad", "000 eq. (45)-(46), Table 1: revolute joint C_k"))
+        out.append((f"phi_s{k + 1}", sp.acos(normal2.dot(leg_vec) / length), s_lo, s_hi,
+                    "passive", "rad", "000 eq. (45)-(46), Table 1: spherical joint D_k"))
     return out
