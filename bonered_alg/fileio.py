@@ -27,3 +27,22 @@ def atomic_write_text(path: Path | str, text: str) -> bool:
             os.unlink(tmp)
         raise
     return True
+
+
+def atomic_write_bytes(path: Path | str, data: bytes) -> bool:
+    """Binary counterpart of :func:`atomic_write_text` (plots); skip if unchanged."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if path.is_file() and path.read_bytes() == data:
+        return False
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return True

@@ -34,7 +34,7 @@ from .elimination.problem import (
     ParametricResult,
 )
 from .errors import EngineTimeoutError, NonClosingMechanismError
-from .fileio import atomic_write_text
+from .fileio import atomic_write_bytes, atomic_write_text
 from .kinematics.ik_plan import IKStep, mode_count, plan
 from .kinematics.singularities import FactoredPolynomial, discriminant, factored
 from .mechanisms import REGISTRY, load
@@ -272,7 +272,9 @@ def ik_module_source(d: Derivation) -> str:
         fk_unknowns=[s.joint for f in d.fk for s in f.steps],
         fk_system=[g for f in d.fk for g in f.problem.equations],
         study_to_pose=getattr(m, "STUDY_TO_POSE", None), constants=d.constants,
-        limits=m.limits(d) if callable(getattr(m, "limits", None)) else ())
+        limits=m.limits(d) if callable(getattr(m, "limits", None)) else (),
+        pose_functions=(m.pose_functions(d) if callable(getattr(m, "pose_functions", None))
+                        else ()))
     return write_ik_module(spec)
 
 
@@ -284,12 +286,26 @@ def write(d: Derivation, root: Path) -> list[Path]:
     """Render every output first, then write them atomically; returns the changed files."""
     from .report.latex_report import render_report
 
-    outputs = {
-        root / "generated" / f"{d.mechanism.name}.py": ik_module_source(d),
+    source = ik_module_source(d)
+    outputs: dict[Path, str | bytes] = {
+        root / "generated" / f"{d.mechanism.name}.py": source,
         root / "derivations" / f"{d.mechanism.name}.tex": render_report(d),
         root / "derivations" / f"{d.mechanism.name}.verification.json": verification_json(d),
     }
-    return [p for p, text in outputs.items() if atomic_write_text(p, text)]
+    if hasattr(d.module, "artifacts"):
+        generated = load_generated(source, d.mechanism.name)
+        for rel, content in d.module.artifacts(d, generated).items():
+            outputs[root / "derivations" / rel] = content
+    return [p for p, content in outputs.items()
+            if (atomic_write_bytes if isinstance(content, bytes) else atomic_write_text)(
+                p, content)]
+
+
+def load_generated(source: str, name: str) -> ModuleType:
+    """Import generated module source (our own output) without writing it anywhere."""
+    module = ModuleType(f"bonered_alg.generated.{name}")
+    exec(compile(source, f"<generated {name}>", "exec"), module.__dict__)  # noqa: S102
+    return module
 
 
 _HASH_RE = re.compile(r"^DERIVATION_HASH = '([0-9a-f]{64})'$", re.M)

@@ -12,7 +12,9 @@ from tests.conftest import ROOT
 @pytest.mark.skipif(shutil.which("latexmk") is None, reason="no LaTeX toolchain")
 @pytest.mark.parametrize("name", REGISTRY)
 def test_report_compiles(tmp_path, name):
-    shutil.copy(ROOT / "derivations" / f"{name}.tex", tmp_path)
+    for f in (ROOT / "derivations").glob(f"{name}.*"):
+        if f.suffix in (".tex", ".png"):
+            shutil.copy(f, tmp_path)
     out = subprocess.run(["latexmk", "-pdf", "-interaction=nonstopmode", "-halt-on-error",
                           f"{name}.tex"], cwd=tmp_path, capture_output=True, text=True,
                          timeout=600)

@@ -37,6 +37,8 @@ class IKModuleSpec:
     constants: dict[sp.Symbol, sp.Expr] | None = None  # algebraic constants -> exact values
     # (name, expression in POSE/JOINTS/parameters, lower, upper, kind, unit, source)
     limits: Sequence[tuple] = ()
+    # mechanism-specific functions of the pose: (name, output names, expressions, doc)
+    pose_functions: Sequence[tuple] = ()
 
 
 def _literal(value) -> str:
@@ -83,6 +85,8 @@ def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
            "fk_system": [sp.sympify(g).subs(c) for g in spec.fk_system],
            "singularities": [(n, sp.sympify(e).subs(c), m) for n, e, m in spec.singularities],
            "limits": [(lim[0], sp.sympify(lim[1]).subs(c), *lim[2:]) for lim in spec.limits],
+           "pose_functions": [(f[0], f[1], [sp.sympify(e).subs(c) for e in f[2]], f[3])
+                              for f in spec.pose_functions],
            "pose_to_study": {k: sp.sympify(v).subs(c) for k, v in spec.pose_to_study.items()},
            "study_to_pose": ({k: sp.sympify(v).subs(c) for k, v in spec.study_to_pose.items()}
                              if spec.study_to_pose else None),
@@ -153,6 +157,17 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     if spec.limits:
         kernels.append(kernel("_limit_values", args, [sp.sympify(lim[1]) for lim in spec.limits],
                               "Quantities bounded by LIMITS (joint strokes, passive angles)."))
+    pf_src = []
+    for fname, outs, exprs, doc in spec.pose_functions:
+        kern = kernel(f"_pf_{fname}", [*spec.pose, *par], list(exprs), doc)
+        kernels.append(kern)
+        pf_src += [
+            "",
+            "",
+            f"def {fname}(pose, **params):",
+            f'    """{doc} Returns (..., {len(outs)}): {", ".join(outs)}."""',
+            f"    return _pose_function({fname!r}, {kern.name}, pose, params)",
+        ]
     sing_src = []
     for name, expr, meaning in spec.singularities:
         kern = kernel(f"_sing_{name}", args, [sp.sympify(expr).subs(sub)], meaning)
@@ -232,4 +247,4 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         lines.append("")
     lines += ["_STEPS = (", *steps_src, ")", "_FK_STEPS = (", *fk_src, ")",
               "_SINGULARITIES = {", *sing_src, "}", ""]
-    return "\n".join(lines) + RUNTIME
+    return "\n".join(lines) + RUNTIME + ("\n".join(pf_src) + "\n" if pf_src else "")

@@ -363,4 +363,13 @@ def fk_status(q, **params):
     """Status per assembly mode for ``fk``: array (..., FK_MODES) of ``STATUS`` codes."""
     q, par = _fk_inputs("fk_status", q), _params("fk_status", params)
     return numpy.stack([_fk_mode(q, m, par, True)[1] for m in range(FK_MODES)], axis=-1)
+
+
+def _pose_function(func, kern, pose, params):
+    pose, par = _pose(func, pose), _params(func, params)
+    shape = pose.shape[:-1]
+    with numpy.errstate(all="ignore"):
+        values = kern(*[pose[..., i] for i in range(len(POSE))], *par)
+    return numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+                        for v in values], axis=-1)
 '''

@@ -16,7 +16,7 @@ from .latex_util import broken_math, latex, tex_escape, texttt
 PREAMBLE = r"""\documentclass[10pt,a4paper]{article}
 \usepackage[margin=2cm]{geometry}
 \usepackage{amsmath,amssymb}
-\usepackage{booktabs,longtable}
+\usepackage{booktabs,longtable,graphicx}
 \allowdisplaybreaks
 \setlength{\parindent}{0pt}
 \setlength{\parskip}{4pt}
