@@ -160,6 +160,75 @@ def throughput_benchmarks(n, derivation):
     return out
 
 
+def paper_ik_planar_tripod(p, ra=190.0, rb=190.0):
+    """Hand-written numpy of 000 eq. (17) and (21): the baseline a user would write."""
+    x, y, z, a, b, g = (p[:, i] for i in range(6))
+    sa, ca, sb, cb, sg, cg = np.sin(a), np.cos(a), np.sin(b), np.cos(b), np.sin(g), np.cos(g)
+    s3 = np.sqrt(3.0)
+    den = sg + s3 * cg
+    q1 = (ra + ra * cg + 2 * y * cg - 2 * x * sg + s3 * ra * sg) / den
+    q2 = (ra + ra * cg + s3 * ra * sg - y * cg + x * sg - s3 * y * sg - s3 * x * cg
+          - s3 * rb * sa * sb) / den
+    q3 = (ra + ra * cg + s3 * ra * sg - y * cg + x * sg + s3 * y * sg + s3 * x * cg
+          + s3 * rb * sa * sb) / den
+    q4 = np.sqrt((z - rb * sb) ** 2 + (ra - rb * cb + rb * sa * sb) ** 2)
+    q5 = np.sqrt((z + rb * sa * cb) ** 2 + (ra - rb * ca) ** 2)
+    q6 = np.sqrt((z + rb * sb) ** 2 + (ra - rb * cb - rb * sa * sb) ** 2)
+    return np.stack([q1, q2, q3, q4, q5, q6], axis=-1)
+
+
+def planar_tripod_benchmarks(n):
+    from bonered_alg.generated import planar_tripod as pt
+
+    from bonered_alg.mechanisms import planar_tripod as mod
+
+    d = derive("planar_tripod")
+    rng = np.random.default_rng(5)
+    poses = np.column_stack([rng.uniform(-40, 40, n), rng.uniform(-40, 40, n),
+                             rng.uniform(190, 235, n), rng.uniform(-0.15, 0.15, n),
+                             rng.uniform(-0.15, 0.15, n), rng.uniform(-0.6, 0.6, n)])
+    ik_exprs = mod._ik_expressions(d)
+    geo = {mod.ra: 190.0, mod.rb: 190.0}
+    exprs = [ik_exprs[q].subs(geo) for q in mod.JOINTS]
+    lam_ik = sp.lambdify(mod.POSE, exprs, modules="numpy")
+    lam_jac = sp.lambdify(mod.POSE, list(sp.Matrix(exprs).jacobian(sp.Matrix(mod.POSE))),
+                          modules="numpy")
+
+    def lambdify_ik(p):
+        return np.stack(np.broadcast_arrays(*lam_ik(*p.T)), axis=-1)
+
+    def lambdify_ik_jac(p):
+        q = lambdify_ik(p)
+        jac = np.stack(np.broadcast_arrays(*lam_jac(*p.T)), axis=-1).reshape(len(p), 6, 6)
+        return q, jac
+
+    t_gen = median_time(lambda: pt.ik(poses), 5)
+    t_gen_nolim = median_time(lambda: pt.ik(poses, limits=False), 5)
+    t_lam = median_time(lambda: lambdify_ik(poses), 5)
+    t_paper = median_time(lambda: paper_ik_planar_tripod(poses), 5)
+    t_gen_j = median_time(lambda: (pt.ik(poses), pt.jacobian(poses)), 3)
+    t_lam_j = median_time(lambda: lambdify_ik_jac(poses), 3)
+    q_gen = pt.ik(poses, limits=False)
+    out = {
+        "poses": n,
+        "generated_ik_with_limits_poses_per_s": n / t_gen,
+        "generated_ik_poses_per_s": n / t_gen_nolim,
+        "lambdify_ik_poses_per_s": n / t_lam,
+        "paper_formulas_numpy_ik_poses_per_s": n / t_paper,
+        "ik_speedup_vs_lambdify": t_lam / t_gen_nolim,
+        "ik_ratio_vs_paper_formulas": t_paper / t_gen_nolim,
+        "generated_ik_plus_jacobian_poses_per_s": n / t_gen_j,
+        "lambdify_ik_plus_jacobian_poses_per_s": n / t_lam_j,
+        "ik_plus_jacobian_speedup_vs_lambdify": t_lam_j / t_gen_j,
+        "max_abs_difference_vs_paper_formulas_mm": float(np.nanmax(np.abs(
+            q_gen - paper_ik_planar_tripod(poses)))),
+        "fraction_within_limits": float(np.mean(np.all(np.isfinite(pt.ik(poses)), axis=-1))),
+        "derivation_s": median_time(lambda: derive("planar_tripod", use_cache=False), 1),
+    }
+    print(out, flush=True)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
@@ -175,6 +244,7 @@ def main():
         "elimination": elimination_benchmarks(args.sympy_budget),
         "derive": derive_benchmarks(),
         "throughput": throughput_benchmarks(args.poses, derivation),
+        "planar_tripod": planar_tripod_benchmarks(args.poses),
     }
     args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
     print(f"wrote {args.out}")

@@ -122,7 +122,12 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     par = [sp.Symbol(p.name, real=True) for p in spec.parameters]
     sub = dict(spec.pose_to_study)
     study = list(sub)
-    kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, spec.pose, par, sub)
+    # the pose is converted to Study coordinates once per call; the IK steps are polynomial
+    # in those coordinates
+    kernels = [kernel("_study", [*spec.pose, *par], [sub[y] for y in study],
+                      "Study coordinates STUDY_POSE of the pose (POSE).")]
+    step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {})
+    kernels += step_kernels
     bit = len(mode_bits)
     fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
     kernels += fk_kernels
@@ -142,11 +147,13 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     jo = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.pose))
     jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
     tri = _triangular_jacobian(spec.steps, g_pose, spec.joints, spec.pose)
-    n_steps = len(spec.steps)
     linear = [k for k, st in enumerate(spec.steps) if st.degree == 1]
-    kernels.append(kernel("_pivots", args, [tri[k] for k in linear]
-                          + [tri[n_steps + k] for k in linear],
-                          "Pivots dG_k/dq_k and row scales of the linear IK steps."))
+    piv = [sp.diff(gens[k], spec.steps[k].joint) for k in linear]
+    piv_scale = [sp.Abs(pv) + sum(sp.Abs(sp.diff(gens[k], y)) for y in study)
+                 for k, pv in zip(linear, piv)]
+    kernels.append(kernel("_pivots", [*study, *spec.joints, *par], piv + piv_scale,
+                          "Pivots dG_k/dq_k of the linear IK steps and their row scales "
+                          "(in Study coordinates)."))
     kernels.append(kernel("_jac", args, tri,
                           "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
                           "substitution: Ji is triangular in the solve order)."))

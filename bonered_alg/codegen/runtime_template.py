@@ -131,10 +131,18 @@ def _solve(pose, mode, par, with_status=False, limits=True):
     A linear step ``B q + C = 0`` is singular where its pivot ``B = dG/dq`` vanishes
     relative to the generator's derivatives (the joint is then undetermined or infinite).
     """
-    q, status = _backsubstitute(pose, _STEPS, _SOLVE_INDEX, len(JOINTS), mode, par,
+    shape = pose.shape[:-1]
+    with numpy.errstate(all="ignore"):
+        values = _study(*[pose[..., i] for i in range(len(POSE))], *par)
+    study = numpy.empty(shape + (len(STUDY_POSE),))
+    for i, v in enumerate(values):
+        study[..., i] = v
+    q, status = _backsubstitute(study, _STEPS, _SOLVE_INDEX, len(JOINTS), mode, par,
                                 with_status)
+    if with_status:
+        status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
     if any(degree == 1 for degree, _, _ in _STEPS):
-        q, status = _pivot_check(pose, q, status, par, with_status)
+        q, status = _pivot_check(study, q, status, par, with_status)
     if limits and LIMITS:
         q, status = _limit_check(pose, q, status, par, with_status)
     return q, status
@@ -176,10 +184,10 @@ def limit_values(pose, q, **params):
             for lim, v in zip(LIMITS, values)}
 
 
-def _pivot_check(pose, q, status, par, with_status):
-    shape = pose.shape[:-1]
+def _pivot_check(study, q, status, par, with_status):
+    shape = study.shape[:-1]
     with numpy.errstate(all="ignore"):
-        values = _pivots(*[pose[..., i] for i in range(len(POSE))],
+        values = _pivots(*[study[..., i] for i in range(study.shape[-1])],
                          *[q[..., i] for i in range(len(JOINTS))], *par)
         half = len(values) // 2
         singular = numpy.zeros(shape, dtype=bool)
@@ -264,7 +272,7 @@ def jacobian_status(pose, mode=0, limits=True, **params):
 
 def _jacobian(func, pose, mode, params, with_status, limits=True):
     pose, mode, par = _pose(func, pose), _mode(func, mode), _params(func, params)
-    q, status = _solve(pose, mode, par, with_status, limits)
+    q, status = _solve(pose, mode, par, True, limits)
     shape = pose.shape[:-1]
     n, m = len(JOINTS), len(POSE)
     cols = [pose[..., i] for i in range(m)]
@@ -278,12 +286,13 @@ def _jacobian(func, pose, mode, params, with_status, limits=True):
         J = numpy.empty(shape + (n * m,))
         for k, e in enumerate(entries):
             J[..., k] = e
+    # a double root of a quadratic step (ON_BOUNDARY) is an input singularity as well
+    singular |= status == ON_BOUNDARY
     J = J.reshape(shape + (n, m))
     J[singular] = numpy.nan
-    if with_status:
-        ik_ok = (status == OK) | (status == ON_BOUNDARY)
-        status = numpy.where(ik_ok & singular, INPUT_SINGULAR, status).astype(numpy.int8)
-    return J, status
+    ik_ok = (status == OK) | (status == ON_BOUNDARY)
+    status = numpy.where(ik_ok & singular, INPUT_SINGULAR, status).astype(numpy.int8)
+    return J, (status if with_status else None)
 
 
 def singularities(pose, q, **params):

@@ -219,20 +219,21 @@ def pose_to_study(deriv) -> dict:
     MP2 in MP1 = T(x2, y2, z) Rz(gamma2) Ry(beta) Rx(alpha) with the derived parasitic
     (x2, y2, gamma2); MP1 = MP2 * conj(MP2 in MP1)."""
     par = deriv.extra["parasitic"]
-    t_a, t_b, t_g = sp.tan(alpha / 2), sp.tan(beta / 2), sp.tan(gamma / 2)
-    fill = {ta: t_a, tb: t_b, z2: z}
+    t_g = sp.Symbol("t_gamma", **R)
+    fill = {z2: z}
     xp, yp, gp = (sp.sympify(par[v]).subs(fill) for v in (x2, y2, tg2))
     p2 = ss.product(ss.translation_vector((xp, yp, z)), ss.rotation("z", gp),
-                    ss.rotation("y", t_b), ss.rotation("x", t_a))
+                    ss.rotation("y", tb), ss.rotation("x", ta))
     world = ss.product(ss.translation_vector((x, y, z)), ss.rotation("z", t_g),
-                       ss.rotation("y", t_b), ss.rotation("x", t_a))
+                       ss.rotation("y", tb), ss.rotation("x", ta))
     p1 = ss.product(world, ss.conjugate(p2))
+    # rational in the tan-half-angles: the generated code evaluates three tangents only
+    halves = {ta: sp.tan(alpha / 2), tb: sp.tan(beta / 2), t_g: sp.tan(gamma / 2)}
     out = {}
-    out[g] = sp.simplify(p1[3] / p1[0])
-    out[v1] = sp.simplify(p1[5] / p1[0])
-    out[v2] = sp.simplify(p1[6] / p1[0])
-    for i, s in enumerate(PX):
-        out[s] = sp.simplify(p2[i + 1] / p2[0])
+    for sym, num, den in [(g, p1[3], p1[0]), (v1, p1[5], p1[0]), (v2, p1[6], p1[0])]:
+        out[sym] = sp.factor(sp.cancel(num / den)).subs(halves)
+    for i, s_ in enumerate(PX):
+        out[s_] = sp.factor(sp.cancel(p2[i + 1] / p2[0])).subs(halves)
     return out
 
 
