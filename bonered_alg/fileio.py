@@ -8,29 +8,18 @@ from pathlib import Path
 
 
 def atomic_write_text(path: Path | str, text: str) -> bool:
-    """Write ``text`` to ``path`` atomically (temp file + rename); skip if unchanged.
+    """Write ``text`` (UTF-8, ``\\n`` line ends) to ``path`` atomically; skip if unchanged.
 
     Returns True when the file changed.
     """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if path.is_file() and path.read_text() == text:
-        return False
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", newline="\n") as fh:
-            fh.write(text)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return True
+    return atomic_write_bytes(path, text.encode("utf-8"))
 
 
 def atomic_write_bytes(path: Path | str, data: bytes) -> bool:
-    """Binary counterpart of :func:`atomic_write_text` (plots); skip if unchanged."""
+    """Write ``data`` to ``path`` atomically (temp file + rename); skip if unchanged.
+
+    Returns True when the file changed.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     if path.is_file() and path.read_bytes() == data:

@@ -147,13 +147,16 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     jo = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.pose))
     jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
     tri = _triangular_jacobian(spec.steps, g_pose, spec.joints, spec.pose)
-    linear = [k for k, st in enumerate(spec.steps) if st.degree == 1]
+    # pivots of linear steps that can vanish (a constant pivot never does)
+    linear = [k for k, st in enumerate(spec.steps)
+              if st.degree == 1 and not sp.diff(gens[k], st.joint).is_number]
     piv = [sp.diff(gens[k], spec.steps[k].joint) for k in linear]
     piv_scale = [sp.Abs(pv) + sum(sp.Abs(sp.diff(gens[k], y)) for y in study)
                  for k, pv in zip(linear, piv)]
-    kernels.append(kernel("_pivots", [*study, *spec.joints, *par], piv + piv_scale,
-                          "Pivots dG_k/dq_k of the linear IK steps and their row scales "
-                          "(in Study coordinates)."))
+    if linear:
+        kernels.append(kernel("_pivots", [*study, *spec.joints, *par], piv + piv_scale,
+                              "Pivots dG_k/dq_k of the linear IK steps and their row scales "
+                              "(in Study coordinates)."))
     kernels.append(kernel("_jac", args, tri,
                           "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
                           "substitution: Ji is triangular in the solve order)."))
@@ -224,6 +227,7 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         f"MODE_BITS = {tuple(mode_bits)!r}",
         f"_SOLVE_ORDER = {tuple(str(st.joint) for st in spec.steps)!r}",
         f"_SOLVE_INDEX = {tuple(list(spec.joints).index(st.joint) for st in spec.steps)!r}",
+        f"_CHECK_PIVOTS = {bool(linear)!r}",
         f"FK_UNKNOWNS = {tuple(str(u) for u in spec.fk_unknowns)!r}",
         f"FK_MODES = {2 ** len(fk_bits) if spec.fk_steps else 0}",
         f"FK_MODE_BITS = {tuple(fk_bits)!r}",

@@ -141,7 +141,7 @@ def _solve(pose, mode, par, with_status=False, limits=True):
                                 with_status)
     if with_status:
         status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
-    if any(degree == 1 for degree, _, _ in _STEPS):
+    if _CHECK_PIVOTS:
         q, status = _pivot_check(study, q, status, par, with_status)
     if limits and LIMITS:
         q, status = _limit_check(pose, q, status, par, with_status)

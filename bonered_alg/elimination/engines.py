@@ -165,6 +165,22 @@ def _singular_poly(terms: pt.PolyTerms, names: list[str]) -> str:
     return "+".join(out) if out else "0"
 
 
+# prints ideal E term by term ("T exponents coefficient", "END" per generator): parsed by
+# SingularEngine._run without evaluating anything
+_PRINT_TERMS = """poly g;
+for (i = 1; i <= ncols(E); i++) {
+  g = E[i];
+  while (g != 0) {
+    print("T " + string(leadexp(g)) + " " + string(leadcoef(g)));
+    g = g - lead(g);
+  }
+  print("END");
+}
+print("DONE");
+quit;
+"""
+
+
 class SingularEngine(Engine):
     """Singular (``std``/``eliminate`` over Q), run as a separate program."""
 
@@ -198,18 +214,8 @@ ideal E = eliminate(I, {elim});
 ring s = 0, ({",".join(keep_names)}), dp;
 ideal E = imap(r, E);
 E = std(E);
-int i; poly g;
-for (i = 1; i <= ncols(E); i++) {{
-  g = E[i];
-  while (g != 0) {{
-    print("T " + string(leadexp(g)) + " " + string(leadcoef(g)));
-    g = g - lead(g);
-  }}
-  print("END");
-}}
-print("DONE");
-quit;
-"""
+int i;
+""" + _PRINT_TERMS
 
     def lex_script(self, problem: ParametricProblem) -> str:
         nu, npar = len(problem.unknowns), len(problem.parameters)
@@ -225,18 +231,7 @@ int i;
 for (i = 1; i <= ncols(G); i++) {{ G[i] = cleardenom(G[i]); }}
 ring s = 0, ({",".join(unames + pnames)}), dp;
 ideal E = imap(r, G);
-poly g;
-for (i = 1; i <= ncols(E); i++) {{
-  g = E[i];
-  while (g != 0) {{
-    print("T " + string(leadexp(g)) + " " + string(leadcoef(g)));
-    g = g - lead(g);
-  }}
-  print("END");
-}}
-print("DONE");
-quit;
-"""
+""" + _PRINT_TERMS
 
     def _eliminate(self, problem, budget_s):
         return self._run(self.script(problem), problem, budget_s)
