@@ -272,6 +272,7 @@ def ik_module_source(d: Derivation) -> str:
         fk_unknowns=[s.joint for f in d.fk for s in f.steps],
         fk_system=[g for f in d.fk for g in f.problem.equations],
         study_to_pose=getattr(m, "STUDY_TO_POSE", None), constants=d.constants,
+        fk_note=d.fk_note,
         limits=m.limits(d) if callable(getattr(m, "limits", None)) else (),
         pose_functions=(m.pose_functions(d) if callable(getattr(m, "pose_functions", None))
                         else ()))

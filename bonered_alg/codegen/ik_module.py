@@ -35,6 +35,7 @@ class IKModuleSpec:
     study_to_pose: dict[sp.Symbol, sp.Expr] | None = None
     fk_system: Sequence[sp.Expr] = ()  # leg generators, for Gauss-Newton polishing of fk
     constants: dict[sp.Symbol, sp.Expr] | None = None  # algebraic constants -> exact values
+    fk_note: str = ""  # why there is no forward kinematics, when there is none
     # (name, expression in POSE/JOINTS/parameters, lower, upper, kind, unit, source)
     limits: Sequence[tuple] = ()
     # mechanism-specific functions of the pose: (name, output names, expressions, doc)
@@ -230,6 +231,7 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         f"_CHECK_PIVOTS = {bool(linear)!r}",
         f"FK_UNKNOWNS = {tuple(str(u) for u in spec.fk_unknowns)!r}",
         f"FK_MODES = {2 ** len(fk_bits) if spec.fk_steps else 0}",
+        f"FK_NOTE = {spec.fk_note if not spec.fk_steps else ''!r}",
         f"FK_MODE_BITS = {tuple(fk_bits)!r}",
         f"_FK_INDEX = {tuple(list(spec.fk_unknowns).index(st.joint) for st in spec.fk_steps)!r}",
         "# the generators of the lex basis solved for each Study coordinate in fk",

@@ -312,6 +312,9 @@ def singularities(pose, q, **params):
 
 
 def _fk_inputs(func, q):
+    if not FK_MODES:
+        raise NotImplementedError(f"{MECHANISM}.{func}: forward kinematics is not generated "
+                                  f"for this mechanism: {FK_NOTE}")
     q = numpy.asarray(q, dtype=float)
     if q.ndim == 0 or q.shape[-1] != len(JOINTS):
         raise ValueError(f"{MECHANISM}.{func}: joints must have shape (..., {len(JOINTS)}) "
