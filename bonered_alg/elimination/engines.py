@@ -15,7 +15,6 @@ import multiprocessing as mp
 import os
 import shutil
 import subprocess
-import time
 from abc import ABC, abstractmethod
 from fractions import Fraction
 
@@ -280,9 +279,3 @@ def get_engine(name: str | None = None) -> Engine:
             f"unknown Groebner engine {name!r}; expected one of {sorted(ENGINES)}"
         ) from None
 
-
-def timed_eliminate(engine: Engine, problem: EliminationProblem, budget_s: float):
-    """(basis, seconds) for one engine call."""
-    t0 = time.perf_counter()
-    basis = engine.eliminate(problem, budget_s)
-    return basis, time.perf_counter() - t0

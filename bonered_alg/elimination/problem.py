@@ -65,13 +65,18 @@ class ParametricProblem(_PolynomialProblem):
         return len(self.unknowns)
 
 
+def as_expressions(basis, gens) -> list[sp.Expr]:
+    """Term lists -> sympy expressions in ``gens``."""
+    return [sp.Add(*[sp.Rational(c.numerator, c.denominator)
+                     * sp.Mul(*[g**k for g, k in zip(gens, e)]) for e, c in terms])
+            for terms in basis]
+
+
 def normal_parametric_basis(polys, unknowns, parameters) -> tuple[pt.PolyTerms, ...]:
     """Primitive over Z[parameters], positive leading coefficient, sorted (deterministic)."""
     gens = tuple(unknowns) + tuple(parameters)
     out = []
-    for terms in polys:
-        expr = sp.Add(*[sp.Rational(c.numerator, c.denominator)
-                        * sp.Mul(*[g**k for g, k in zip(gens, e)]) for e, c in terms])
+    for expr in as_expressions(polys, gens):
         if expr == 0:
             continue
         expr, _ = sp.together(expr).as_numer_denom()
@@ -131,9 +136,7 @@ class ParametricResult:
 
     @property
     def generators(self) -> list[sp.Expr]:
-        gens = self.problem.gens
-        return [sp.Add(*[sp.Rational(c.numerator, c.denominator) * sp.Mul(
-            *[v**k for v, k in zip(gens, e)]) for e, c in p]) for p in self.basis]
+        return as_expressions(self.basis, self.problem.gens)
 
 
 @dataclass
@@ -150,12 +153,7 @@ class EliminationResult:
     @property
     def generators(self) -> list[sp.Expr]:
         """The generators as sympy expressions in ``problem.keep``."""
-        keep = self.problem.keep
-        return [
-            sp.Add(*[sp.Rational(c.numerator, c.denominator) * sp.Mul(
-                *[v**k for v, k in zip(keep, e)]) for e, c in p])
-            for p in self.basis
-        ]
+        return as_expressions(self.basis, self.problem.keep)
 
     @property
     def is_unit_ideal(self) -> bool:
