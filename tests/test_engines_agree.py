@@ -58,3 +58,21 @@ def test_lex_bases_agree(derivation):
     for f in derivation.fk:
         assert SympyEngine().lex_basis(f.problem, 120) == SingularEngine().lex_basis(
             f.problem, 120)
+
+
+def test_algebraic_constant_runs_over_the_extension_field():
+    """A kept constant with an irreducible minimal polynomial (s3^2 = 3) is handed to
+    Singular as ``minpoly``; the answer is the same ideal as sympy's, where s3 is a variable.
+    The planar leg of 000 exercises it with a real chain."""
+    mod = load("planar_tripod")
+    mech = mod.build()
+    planar = mech.closures[0]
+    problem = leg_problem(mech, planar, planar.legs[0])
+    assert "minpoly" in SingularEngine().script(problem)
+    assert SympyEngine().eliminate(problem, 120) == SingularEngine().eliminate(problem, 120)
+    x, u, s3 = sp.symbols("x u s3")
+    toy = EliminationProblem("toy", (s3**2 - 3, x - s3 * u, u**2 - 2), (u,), (x, s3))
+    got = SingularEngine().eliminate(toy, 60)
+    assert got == SympyEngine().eliminate(toy, 60)
+    # <x^2 - 6, s3^2 - 3>: the only relation between x and s3 is none beyond these
+    assert len(got) == 2

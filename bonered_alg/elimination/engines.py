@@ -180,6 +180,21 @@ quit;
 """
 
 
+def _algebraic_constant(problem: EliminationProblem,
+                        terms: list[pt.PolyTerms]) -> tuple[int, int] | None:
+    """(index in ``keep``, index of its equation) of the only kept variable bound by an
+    irreducible univariate equation of degree >= 2, or None."""
+    ne = len(problem.eliminate)
+    found = []
+    for j, t in enumerate(terms):
+        used = {i for e, _ in t for i, k in enumerate(e) if k}
+        if len(used) == 1 and (i := next(iter(used))) >= ne:
+            poly = sp.Poly(problem.equations[j], problem.gens[i])
+            if poly.degree() >= 2 and poly.is_irreducible:
+                found.append((i - ne, j))
+    return found[0] if len(found) == 1 else None
+
+
 class SingularEngine(Engine):
     """Singular (``std``/``eliminate`` over Q), run as a separate program."""
 
@@ -201,18 +216,47 @@ class SingularEngine(Engine):
         return first[0] if first else "Singular (unknown version)"
 
     def script(self, problem: EliminationProblem) -> str:
+        """Elimination script; a kept algebraic constant becomes the ground field's extension.
+
+        When exactly one kept variable ``c`` is bound by an irreducible univariate equation
+        (an algebraic constant such as ``s3`` with ``s3^2 = 3``), the elimination runs over
+        ``Q(c)`` (Singular ``minpoly``) instead of carrying ``c`` as a variable: for the
+        3-RPS legs of 001 this takes 0.5 s instead of more than 60 s.  The result is mapped
+        back to ``Q[keep]`` (``c`` a variable again) and reduced together with the minimal
+        polynomial, which is the same ideal ``<equations> ∩ Q[keep]``: ideals of ``Q[x, c]``
+        that contain the minimal polynomial correspond to ideals of ``Q(c)[x]``.
+        """
         ne, nk = len(problem.eliminate), len(problem.keep)
         names = [f"e{i}" for i in range(ne)] + [f"k{i}" for i in range(nk)]
         keep_names = names[ne:]
-        eqs = ",\n".join(_singular_poly(t, names) for t in problem.equation_terms())
-        elim = "*".join(names[:ne]) if ne else "1"
-        return f"""option(redSB); option(redTail);
+        terms = problem.equation_terms()
+        ext = _algebraic_constant(problem, terms)
+        if ext is None:
+            eqs = ",\n".join(_singular_poly(t, names) for t in terms)
+            elim = "*".join(names[:ne]) if ne else "1"
+            return f"""option(redSB); option(redTail);
 ring r = 0, ({",".join(names)}), dp;
 ideal I = {eqs};
 ideal E = eliminate(I, {elim});
 ring s = 0, ({",".join(keep_names)}), dp;
 ideal E = imap(r, E);
 E = std(E);
+int i;
+""" + _PRINT_TERMS
+        index, minpoly = ext
+        par = names[ne + index]
+        ring_vars = [n for n in names if n != par]
+        eqs = ",\n".join(_singular_poly(t, names) for k, t in enumerate(terms) if k != minpoly)
+        mp_text = _singular_poly(terms[minpoly], names)
+        elim = "*".join(names[:ne]) if ne else "1"
+        return f"""option(redSB); option(redTail);
+ring r = (0,{par}), ({",".join(ring_vars)}), dp;
+minpoly = {mp_text};
+ideal I = {eqs};
+ideal E = eliminate(I, {elim});
+ring s = 0, ({",".join(keep_names)}), dp;
+ideal E = imap(r, E);
+E = std(E + ideal({mp_text}));
 int i;
 """ + _PRINT_TERMS
 
