@@ -46,6 +46,11 @@ def _literal(value) -> str:
     return "None" if value is None else repr(float(value))
 
 
+def _abs(e: sp.Expr) -> sp.Expr:
+    """``|e|`` without sympy's simplification attempts (minutes on large expressions)."""
+    return sp.Integer(0) if e == 0 else sp.Abs(e, evaluate=False)
+
+
 def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
                          joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol]) -> list:
     """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21).
@@ -66,7 +71,7 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
             row.append(-acc / d)
         rows[st.joint] = row
         pivots.append(d)
-        scales.append(sp.Abs(d) + sum(sp.Abs(e) for e in dgx))
+        scales.append(_abs(d) + sum(_abs(e) for e in dgx))
     return pivots + scales + [e for q in joints for e in rows[q]]
 
 
@@ -152,7 +157,7 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     linear = [k for k, st in enumerate(spec.steps)
               if st.degree == 1 and not sp.diff(gens[k], st.joint).is_number]
     piv = [sp.diff(gens[k], spec.steps[k].joint) for k in linear]
-    piv_scale = [sp.Abs(pv) + sum(sp.Abs(sp.diff(gens[k], y)) for y in study)
+    piv_scale = [sp.Abs(pv, evaluate=False) + sum(sp.Abs(sp.diff(gens[k], y)) for y in study)
                  for k, pv in zip(linear, piv)]
     if linear:
         kernels.append(kernel("_pivots", [*study, *spec.joints, *par], piv + piv_scale,

@@ -24,11 +24,15 @@ class _Printer(NumPyPrinter):
         return f"{int(expr)}.0" if abs(int(expr)) < 2**53 else repr(float(expr))
 
     def _print_Pow(self, expr, rational=False):  # noqa: N802
-        # integer powers stay integer (numpy's fast paths); x**2 becomes x*x
+        # integer powers stay integer (numpy's fast paths); x**2 becomes (x*x), parenthesized
+        # because the printer gives a Pow the precedence of a power: unparenthesized,
+        # a/x**2 would print as a/x*x
         base, exp = expr.base, expr.exp
         b = self.parenthesize(base, PRECEDENCE["Pow"], strict=False)
-        if exp.is_Integer and 0 < int(exp) <= 3:
-            return "*".join([b] * int(exp))
+        if exp.is_Integer and int(exp) == 1:
+            return b
+        if exp.is_Integer and 1 < int(exp) <= 3:
+            return "(" + "*".join([b] * int(exp)) + ")"
         if exp.is_Integer:
             return f"{b}**{int(exp)}"
         return super()._print_Pow(expr, rational=rational)

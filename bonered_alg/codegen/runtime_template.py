@@ -19,8 +19,8 @@ STATUS = {
     OK: "ok",
     NO_REAL_SOLUTION: "no real solution: the pose is outside the reach of the leg that "
                       "drives this joint (negative discriminant)",
-    JOINT_AT_INFINITY: "tan-half-angle joint parameter at infinity (joint angle pi) or a "
-                       "vanishing linear coefficient",
+    JOINT_AT_INFINITY: "joint parameter at infinity (a tan-half-angle at joint angle pi, or "
+                       "an overflow)",
     ON_BOUNDARY: "on the workspace boundary of a leg (double root, input singularity): the "
                  "joint values are valid, the Jacobian is not",
     INPUT_SINGULAR: "input singularity: a pivot of Ji vanishes (det Ji = 0); the joint "
@@ -97,6 +97,7 @@ def _backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False)
                 root = numpy.asarray(-c / b, dtype=float)
                 bad = ~numpy.isfinite(root)
                 no_real = None
+                pivot_zero = bad & (b == 0)  # det Ji = 0 exactly: an input singularity
             else:
                 sign = -1.0 if (mode >> bit) & 1 else 1.0
                 bb = b * b
@@ -106,9 +107,12 @@ def _backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False)
                 root = numpy.where(sign * b <= 0.0, (ssq - b) / (2.0 * a), (2.0 * c) / (-b - ssq))
                 no_real = disc < -_DISC_RTOL * bb
                 bad = no_real | ~numpy.isfinite(root)
+                pivot_zero = None
             root = numpy.where(bad, numpy.nan, root)
             if with_status:
                 new = numpy.where(bad, JOINT_AT_INFINITY, OK)
+                if pivot_zero is not None:
+                    new = numpy.where(pivot_zero, INPUT_SINGULAR, new)
                 if no_real is not None:
                     new = numpy.where(no_real, NO_REAL_SOLUTION, new)
                     on_boundary = ~bad & (numpy.abs(disc) <= _DISC_RTOL * bb)

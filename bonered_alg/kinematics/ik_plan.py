@@ -40,8 +40,12 @@ class IKStep:
 
 
 def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
-         context: str) -> list[IKStep]:
-    """Order of solution and the generator used for each joint (see module docstring)."""
+         context: str, constants: dict | None = None) -> list[IKStep]:
+    """Order of solution and the generator used for each joint (see module docstring).
+
+    ``constants`` maps algebraic constants (``s3``) to their values for the test that a
+    leading coefficient cannot vanish."""
+    constants = constants or {}
     solved: list[sp.Symbol] = []
     steps: list[IKStep] = []
     remaining = list(joints)
@@ -56,7 +60,8 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
                 deg = sp.degree(g, q)
                 if deg not in (1, 2):
                     continue
-                rank = 0 if deg == 1 else (1 if _definite(sp.Poly(g, q).coeff_monomial(q**2))
+                rank = 0 if deg == 1 else (1 if _definite(
+                    sp.Poly(g, q).coeff_monomial(q**2).subs(constants))
                                            else 2)
                 cand = (rank, sp.count_ops(g), str(q), src, q, g, deg)
                 if best is None or cand[:3] < best[:3]:
@@ -84,13 +89,22 @@ def _compact(c: sp.Expr, max_terms: int = 40) -> sp.Expr:
 
 def _definite(a: sp.Expr) -> bool:
     """True when ``a`` is visibly positive for all real values: a positive constant plus
-    even monomials with positive coefficients (e.g. ``1 + x**2``).  Quadratic steps whose
-    leading coefficient cannot vanish are preferred: they never degenerate inside the
-    workspace."""
+    even monomials with positive coefficients (e.g. ``1 + x**2``), or a positive constant
+    plus a positive semidefinite quadratic form (e.g. ``1 + (x + sqrt(3) y)**2``).
+    Quadratic steps whose leading coefficient cannot vanish are preferred: they never
+    degenerate inside the workspace."""
     poly = sp.Poly(sp.expand(a), *sorted(a.free_symbols, key=str)) if a.free_symbols else None
     if poly is None:
         return bool(a.is_positive)
     terms = poly.terms()
+    if poly.total_degree() == 2 and not any(sum(m) == 1 for m, _ in terms):
+        # c + x^T Q x with c > 0 and Q positive semidefinite (e.g. 1 + (x1 + sqrt3 x2)^2)
+        const = poly.coeff_monomial(1)
+        n = len(poly.gens)
+        quad = sp.Matrix(n, n, lambda i, j: poly.coeff_monomial(poly.gens[i] * poly.gens[j])
+                         * (1 if i == j else sp.Rational(1, 2)))
+        if const.is_positive and quad.is_positive_semidefinite:
+            return True
     has_const = any(all(e == 0 for e in m) for m, _ in terms)
     return has_const and all(c > 0 and all(e % 2 == 0 for e in m) for m, c in terms)
 

@@ -1,0 +1,35 @@
+"""Code-generation printer and IK-planner details that every mechanism relies on."""
+
+import numpy as np
+import sympy as sp
+
+from bonered_alg.codegen.kernels import kernel
+from bonered_alg.kinematics.ik_plan import _definite
+
+
+def _run(k, *args):
+    ns = {"numpy": np}
+    exec(k.source, ns)  # noqa: S102 - our own generated source
+    return ns[k.name](*args)
+
+
+def test_integer_powers_keep_their_precedence():
+    """x**2 is printed as (x*x): a/x**2 must not become a/x*x (it did, and broke the
+    Jacobian of tripod_planar before this was fixed)."""
+    x, a = sp.symbols("x a")
+    exprs = [a / x**2, a / x**3, a * x**3, (x + 1) ** -2, 1 / (a * x**2), x**1]
+    k = kernel("f", [x, a], exprs, "test")
+    got = _run(k, 1.7, -0.3)
+    ref = [float(e.subs({x: 1.7, a: -0.3})) for e in exprs]
+    assert np.allclose(got, ref, rtol=1e-15, atol=0)
+
+
+def test_definite_leading_coefficients():
+    x, y = sp.symbols("x y", real=True)
+    assert _definite(1 + x**2)
+    assert _definite(4 + (x + sp.sqrt(3) * y) ** 2)  # a square of a linear form plus 4
+    assert _definite(sp.Integer(3))
+    assert not _definite((1 + x) ** 2)  # vanishes at x = -1
+    assert not _definite(x**2 + y**2)  # vanishes at 0
+    assert not _definite(1 - x**2)
+    assert not _definite(1 + x * y)
