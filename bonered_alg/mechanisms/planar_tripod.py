@@ -32,6 +32,7 @@ import networkx as nx
 import sympy as sp
 
 from ..algebra import study_symbolic as ss
+from ..chains.double_triangle import prp_legs
 from ..chains.joints import Role
 from ..chains.mechanism import Closure, Constant, Mechanism, Parameter, joint, leg
 
@@ -79,40 +80,7 @@ SQRT3 = Constant(s3, s3**2 - 3, sp.sqrt(3), "sqrt(3) of the equilateral layouts 
 
 
 def _planar_legs(name: str = NAME):
-    A, P = Role.ACTIVE, Role.PASSIVE
-    half = s3 / 2
-    a_pts = [(half * ra, -ra / 2, 0), (0, ra, 0), (-half * ra, -ra / 2, 0)]
-    b_pts = [(half * ra, ra / 2, 0), (-half * ra, ra / 2, 0), (0, -ra, 0)]
-    # tan(phi/2) of the base edge directions (120, 240, 0 deg) and of the MP1 edges
-    base_u = [s3, -s3, None]
-    mp1_u = [None, -s3 / 3, s3 / 3]  # edge B1B2 is along -x: handled as +x translation
-    legs = []
-    for k, (qk, uk, lk) in enumerate([(q1, u1, l1), (q2, u2, l2), (q3, u3, l3)]):
-        n = k + 1
-        f = [joint(name, "offset", f"P{n}.A", vector=a_pts[k],
-                   description=f"base corner A{n} (eq. 1)")]
-        if base_u[k] is not None:
-            f.append(joint(name, "offset", f"P{n}.e", axis="z", rotation_u=base_u[k],
-                           description="turn to the base edge direction"))
-        f.append(joint(name, "prismatic", f"P{n}.q", "x", qk, A, f"active q{n} along the edge"))
-        if base_u[k] is not None:
-            f.append(joint(name, "offset", f"P{n}.e'", axis="z", rotation_u=-base_u[k],
-                           description="turn back"))
-        f.append(joint(name, "revolute", f"P{n}.R", "z", uk, P, "passive revolute R_k"))
-        if mp1_u[k] is None:
-            f.append(joint(name, "prismatic", f"P{n}.l", "x", lk, P,
-                           "passive prismatic back along the MP1 edge B1B2 (eq. 2)"))
-        else:
-            f.append(joint(name, "offset", f"P{n}.m", axis="z", rotation_u=mp1_u[k],
-                           description="turn to the MP1 edge direction"))
-            f.append(joint(name, "prismatic", f"P{n}.l", "x", -lk, P,
-                           "passive prismatic back along the MP1 edge (eq. 2)"))
-            f.append(joint(name, "offset", f"P{n}.m'", axis="z", rotation_u=-mp1_u[k],
-                           description="turn back"))
-        f.append(joint(name, "offset", f"P{n}.B", vector=tuple(-c for c in b_pts[k]),
-                       description=f"from the MP1 corner B{n} to O1 (eq. 2)"))
-        legs.append(leg(f"P{n}", *f))
-    return legs
+    return prp_legs(name, ra, s3, (q1, q2, q3), (u1, u2, u3), (l1, l2, l3))
 
 
 def _tripod_legs(name: str = NAME):
