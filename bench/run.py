@@ -160,6 +160,23 @@ def throughput_benchmarks(n, derivation):
     return out
 
 
+def lambdified_ik(pose, exprs, cse):
+    """``sympy.lambdify`` of IK expressions and of their Jacobian: the baseline."""
+    n = len(exprs)
+    lam_ik = sp.lambdify(pose, exprs, modules="numpy", cse=cse)
+    lam_jac = sp.lambdify(pose, list(sp.Matrix(exprs).jacobian(sp.Matrix(pose))),
+                          modules="numpy", cse=cse)
+
+    def ik(p):
+        return np.stack(np.broadcast_arrays(*lam_ik(*p.T)), axis=-1)
+
+    def ik_jac(p):
+        jac = np.stack(np.broadcast_arrays(*lam_jac(*p.T)), axis=-1).reshape(len(p), n, len(pose))
+        return ik(p), jac
+
+    return ik, ik_jac
+
+
 def paper_ik_planar_tripod(p, ra=190.0, rb=190.0):
     """Hand-written numpy of 000 eq. (17) and (21): the baseline a user would write."""
     x, y, z, a, b, g = (p[:, i] for i in range(6))
@@ -187,20 +204,10 @@ def planar_tripod_benchmarks(n):
     poses = np.column_stack([rng.uniform(-40, 40, n), rng.uniform(-40, 40, n),
                              rng.uniform(190, 235, n), rng.uniform(-0.15, 0.15, n),
                              rng.uniform(-0.15, 0.15, n), rng.uniform(-0.6, 0.6, n)])
-    ik_exprs = mod._ik_expressions(d)
+    ik_exprs = d.ik_expressions()
     geo = {mod.ra: 190.0, mod.rb: 190.0}
     exprs = [ik_exprs[q].subs(geo) for q in mod.JOINTS]
-    lam_ik = sp.lambdify(mod.POSE, exprs, modules="numpy")
-    lam_jac = sp.lambdify(mod.POSE, list(sp.Matrix(exprs).jacobian(sp.Matrix(mod.POSE))),
-                          modules="numpy")
-
-    def lambdify_ik(p):
-        return np.stack(np.broadcast_arrays(*lam_ik(*p.T)), axis=-1)
-
-    def lambdify_ik_jac(p):
-        q = lambdify_ik(p)
-        jac = np.stack(np.broadcast_arrays(*lam_jac(*p.T)), axis=-1).reshape(len(p), 6, 6)
-        return q, jac
+    lambdify_ik, lambdify_ik_jac = lambdified_ik(mod.POSE, exprs, cse=False)
 
     t_gen = median_time(lambda: pt.ik(poses), 5)
     t_gen_nolim = median_time(lambda: pt.ik(poses, limits=False), 5)
@@ -229,6 +236,86 @@ def planar_tripod_benchmarks(n):
     return out
 
 
+def paper_ik_tripod_planar(p, ra=200.0, rb=200.0, d=0.0):
+    """Hand-written numpy of 001 eq. (10)-(13), (8) and (21)-(23), in the paper's own
+    coordinates (x, y, z, alpha_p, beta_p, gamma_p): the baseline a user would write."""
+    x, y, z, a, b, g = (p[:, i] for i in range(6))
+    sa, ca, sb, cb = np.sin(a), np.cos(a), np.sin(b), np.cos(b)
+    f = np.arctan(sa * sb / (ca + cb))
+    sf, cf = np.sin(f), np.cos(f)
+    x1 = -rb * cb * sf
+    y1 = rb * (ca * cf + sa * sb * sf - cb * cf) / 2
+    r = np.array([[cb * cf, sa * sb * cf - ca * sf, ca * sb * cf + sa * sf],
+                  [cb * sf, sa * sb * sf + ca * cf, ca * sb * sf - sa * cf],
+                  [-sb, sa * cb, ca * cb]])
+    # eq. (8) for (x2, y2, z1): 2x2 system in x2, y2, then z1
+    ex, ey = x - x1 - d * r[0, 2], y - y1 - d * r[1, 2]
+    det = r[0, 0] * r[1, 1] - r[0, 1] * r[1, 0]
+    x2 = (ex * r[1, 1] - ey * r[0, 1]) / det
+    y2 = (r[0, 0] * ey - r[1, 0] * ex) / det
+    z1 = z - d * r[2, 2] - r[2, 0] * x2 - r[2, 1] * y2
+    s3 = np.sqrt(3.0)
+    out = []
+    for ang in (-np.pi / 6, np.pi / 2, 7 * np.pi / 6):
+        ak = np.array([np.cos(ang), np.sin(ang), 0.0])
+        bx = x1 + (r[0, 0] * ak[0] + r[0, 1] * ak[1]) * rb - ra * ak[0]
+        by = y1 + (r[1, 0] * ak[0] + r[1, 1] * ak[1]) * rb - ra * ak[1]
+        bz = z1 + (r[2, 0] * ak[0] + r[2, 1] * ak[1]) * rb
+        out.append(np.sqrt(bx * bx + by * by + bz * bz))
+    sg, cg = np.sin(g), np.cos(g)
+    den = sg + s3 * cg
+    out.append((rb + (s3 * rb - 2 * x2) * sg + (rb + 2 * y2) * cg) / den)
+    out.append((rb + (s3 * rb + x2 - s3 * y2) * sg + (rb - s3 * x2 - y2) * cg) / den)
+    out.append((rb + (s3 * rb + x2 + s3 * y2) * sg + (rb + s3 * x2 - y2) * cg) / den)
+    return np.stack(out, axis=-1)
+
+
+def tripod_planar_benchmarks(n):
+    from bonered_alg.generated import tripod_planar as tp
+
+    from bonered_alg.mechanisms import tripod_planar as mod
+
+    d = derive("tripod_planar")
+    rng = np.random.default_rng(6)
+    paper = np.column_stack([rng.uniform(-40, 40, n), rng.uniform(-40, 40, n),
+                             rng.uniform(190, 260, n), rng.uniform(-0.15, 0.15, n),
+                             rng.uniform(-0.15, 0.15, n), rng.uniform(-0.6, 0.6, n)])
+    poses = tp.pose_from_paper_coordinates(paper)
+    ik_exprs = d.ik_expressions()
+    geo = {mod.ra: 200.0, mod.rb: 200.0, mod.d: 0.0}
+    exprs = [ik_exprs[q].subs(geo) for q in mod.JOINTS]
+    lambdify_ik, lambdify_ik_jac = lambdified_ik(mod.POSE, exprs, cse=True)
+
+    t_gen = median_time(lambda: tp.ik(poses), 5)
+    t_gen_nolim = median_time(lambda: tp.ik(poses, limits=False), 5)
+    t_lam = median_time(lambda: lambdify_ik(poses), 5)
+    t_paper = median_time(lambda: paper_ik_tripod_planar(paper), 5)
+    t_gen_j = median_time(lambda: (tp.ik(poses), tp.jacobian(poses)), 3)
+    t_lam_j = median_time(lambda: lambdify_ik_jac(poses), 3)
+    q_gen = tp.ik(poses, limits=False)
+    out = {
+        "poses": n,
+        "generated_ik_with_limits_poses_per_s": n / t_gen,
+        "generated_ik_poses_per_s": n / t_gen_nolim,
+        "lambdify_cse_ik_poses_per_s": n / t_lam,
+        "paper_formulas_numpy_ik_poses_per_s": n / t_paper,
+        "ik_speedup_vs_lambdify_cse": t_lam / t_gen_nolim,
+        "ik_ratio_vs_paper_formulas": t_paper / t_gen_nolim,
+        "generated_ik_plus_jacobian_poses_per_s": n / t_gen_j,
+        "lambdify_cse_ik_plus_jacobian_poses_per_s": n / t_lam_j,
+        "ik_plus_jacobian_speedup_vs_lambdify_cse": t_lam_j / t_gen_j,
+        "max_abs_difference_vs_paper_formulas_mm": float(np.nanmax(np.abs(
+            q_gen - paper_ik_tripod_planar(paper)))),
+        "max_abs_difference_vs_lambdify_mm": float(np.nanmax(np.abs(
+            q_gen - lambdify_ik(poses)))),
+        "fraction_within_limits": float(np.mean(np.all(np.isfinite(tp.ik(poses)), axis=-1))),
+        "generated_operation_count": tp.OPERATION_COUNT,
+        "derivation_s": median_time(lambda: derive("tripod_planar", use_cache=False), 1),
+    }
+    print(out, flush=True)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
@@ -245,6 +332,7 @@ def main():
         "derive": derive_benchmarks(),
         "throughput": throughput_benchmarks(args.poses, derivation),
         "planar_tripod": planar_tripod_benchmarks(args.poses),
+        "tripod_planar": tripod_planar_benchmarks(args.poses),
     }
     args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
     print(f"wrote {args.out}")

@@ -38,7 +38,7 @@ from .fileio import atomic_write_bytes, atomic_write_text
 from .kinematics.ik_plan import IKStep, mode_count, plan
 from .kinematics.singularities import FactoredPolynomial, discriminant, factored
 from .mechanisms import REGISTRY, load
-from .verification import Verdict, algebra_verdicts
+from .verification import Verdict, algebra_verdicts, in_ideal
 
 PACKAGE_DIR = Path(__file__).resolve().parent
 GENERATOR = f"bonered_alg {__version__}"
@@ -106,6 +106,23 @@ class Derivation:
     @property
     def modes(self) -> int:
         return mode_count(self.steps)
+
+    def ik_expressions(self, mode: int = 0) -> dict[sp.Symbol, sp.Expr]:
+        """The IK of every joint as one sympy expression of the pose (constants inserted):
+        the reference the generated code is checked and benchmarked against."""
+        sub = {k: sp.sympify(v).subs(self.constants) for k, v in self.pose_to_study.items()}
+        out: dict[sp.Symbol, sp.Expr] = {}
+        bit = 0
+        for st in self.steps:
+            a, b, c = (sp.sympify(e).subs(self.constants).xreplace(sub)
+                       for e in (st.A, st.B, st.C))
+            if st.degree == 1:
+                out[st.joint] = -c / b
+                continue
+            sign = -1 if (mode >> bit) & 1 else 1
+            bit += 1
+            out[st.joint] = (-b + sign * sp.sqrt(b**2 - 4 * a * c)) / (2 * a)
+        return out
 
 
 def derivation_hash(name: str, package_dir: Path = PACKAGE_DIR,
@@ -210,6 +227,26 @@ def _forward_kinematics(mech: Mechanism, legs: list[LegResult], engine: Engine,
     return out, ""
 
 
+def _extra_ik_generators(module: ModuleType, mech: Mechanism,
+                         legs: list[LegResult]) -> list[tuple[str, sp.Expr]]:
+    """Generators a mechanism module adds to the IK pool (``extra_ik_generators``), each
+    proved to lie in its leg's ideal: its normal form modulo the leg's reduced grevlex
+    basis must be 0 (Cox-Little-O'Shea, Ch. 2 Sect. 6, Corollary 2)."""
+    if not callable(getattr(module, "extra_ik_generators", None)):
+        return []
+    out = []
+    for leg_name, gen, note in module.extra_ik_generators(legs):
+        r = next(r for r in legs if r.leg.name == leg_name)
+        keep = r.problem.keep
+        as_symbols = {c.value: c.symbol for c in mech.constants}
+        if not in_ideal(gen.subs(as_symbols), r.result.generators, keep):
+            raise NonClosingMechanismError(
+                mech.name, f"an extra IK generator for leg {leg_name!r} ({note}) is not in "
+                "the leg's ideal: its normal form is not 0")
+        out.append((f"{r.closure.point}/{leg_name} ({note})", gen))
+    return out
+
+
 def derive(name: str | ModuleType, engine: Engine | None = None,
            budget_s: float = DEFAULT_BUDGET_S, use_cache: bool = True) -> Derivation:
     """Derive a mechanism (registered name, or a mechanism module) completely, in memory."""
@@ -233,8 +270,10 @@ def derive(name: str | ModuleType, engine: Engine | None = None,
             timings[f"eliminate {leg.name} ({engine.name})"] = result.seconds
             legs.append(LegResult(closure, leg, leg.product(), problem, result))
     pool = [(f"{r.closure.point}/{r.leg.name}", g) for r in legs for g in r.result.generators]
+    pool += _extra_ik_generators(module, mech, legs)
     t1 = time.perf_counter()
-    steps = plan(pool, module.JOINTS, f"mechanism {mech.name!r}: inverse kinematics")
+    steps = plan(pool, module.JOINTS, f"mechanism {mech.name!r}: inverse kinematics",
+                 {c.symbol: c.value for c in mech.constants})
     velocity, sing = _velocity_and_singularities(mech, steps)
     timings["ik plan, Jacobians, singularities"] = time.perf_counter() - t1
     t_fk = time.perf_counter()

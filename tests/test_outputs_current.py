@@ -76,11 +76,12 @@ def test_missing_engine_leaves_outputs_untouched(tmp_path, monkeypatch):
 @pytest.mark.parametrize("name", REGISTRY)
 def test_artifacts_are_reproduced_byte_for_byte(name):
     """Trajectory tables and plots written by make derive are deterministic and current."""
+    from bonered_alg.mechanisms import load
     from bonered_alg.pipeline import load_generated
 
-    d = derive(name)
-    if not hasattr(d.module, "artifacts"):
+    if not hasattr(load(name), "artifacts"):
         pytest.skip("no artifacts")
+    d = derive(name)
     gen = load_generated(ik_module_source(d), name)
     for rel, content in d.module.artifacts(d, gen).items():
         committed = (ROOT / "derivations" / rel)

@@ -267,20 +267,6 @@ def _tan_half(expr):
     return out
 
 
-def _ik_expressions(deriv):
-    """Derived IK of the six joints as sympy expressions of the pose (mode 0: positive legs)."""
-    sub = {k: v.subs(deriv.constants) for k, v in deriv.pose_to_study.items()}
-    out = {}
-    for st in deriv.steps:
-        a, b, c = (sp.sympify(e).subs(deriv.constants).subs(sub) for e in (st.A, st.B, st.C))
-        if st.degree == 1:
-            out[st.joint] = -c / b
-        else:
-            out[st.joint] = sp.sqrt(-c / a) if b == 0 else (-b + sp.sqrt(b**2 - 4 * a * c)) / (
-                2 * a)
-    return out
-
-
 def _random_poses(n, seed=3):
     import numpy as np
 
@@ -378,7 +364,7 @@ def _verify(deriv) -> list:
             f"derived generator solved for q{k + 1} minus the printed form = {sp.sstr(diff)}"))
 
     # eq. (17), (21): full IK, numerically (the printed forms involve sin/cos and sqrt)
-    ik = _ik_expressions(deriv)
+    ik = deriv.ik_expressions()
     printed17, printed21 = _printed_eq17(), _printed_eq21()
     for k, qk in enumerate(JOINTS):
         pr = printed17[k] if k < 3 else printed21[k - 3]

@@ -120,6 +120,20 @@ def _section_elimination(d) -> list[str]:
     return out
 
 
+POSE_MAP_MAX_CHARS = 1500
+
+
+def _pose_map_entry(k, v) -> str:
+    """``$k = v$``, or a pointer to the generated kernel when ``v`` is too long to read."""
+    text = latex(v)
+    if len(text) <= POSE_MAP_MAX_CHARS:
+        return f"${latex(k)} = {text}$"
+    return (f"${latex(k)}$ (a rational function of the pose with "
+            f"{int(sp.count_ops(v))} operations before common-subexpression elimination; "
+            r"its construction is given in the mechanism's own section, its code in "
+            r"\texttt{\_study})")
+
+
 def _section_ik(d) -> list[str]:
     out = [r"\section{Inverse kinematics}",
            "Each active joint is solved from a generator of the ideals above whose only "
@@ -127,7 +141,7 @@ def _section_ik(d) -> list[str]:
            r"$A q^2 + B q + C = 0$ has the roots $q = (-B \pm \sqrt{B^2-4AC})/(2A)$; "
            r"the sign is the working mode of that step ($+$: mode bit 0). "
            f"Number of working modes: {d.modes}. Pose coordinates: "
-           + ", ".join(f"${latex(k)} = {latex(v)}$" for k, v in d.pose_to_study.items())
+           + ", ".join(_pose_map_entry(k, v) for k, v in d.pose_to_study.items())
            + " (" + tex_escape(getattr(d.module, "POSE_TO_STUDY_SOURCE",
                                        "004 eq. 13 with x = [1:0:0:0]")) + ")."]
     for s in d.steps:
