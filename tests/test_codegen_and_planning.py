@@ -17,7 +17,8 @@ def test_integer_powers_keep_their_precedence():
     """x**2 is printed as (x*x): a/x**2 must not become a/x*x (it did, and broke the
     Jacobian of tripod_planar before this was fixed)."""
     x, a = sp.symbols("x a")
-    exprs = [a / x**2, a / x**3, a * x**3, (x + 1) ** -2, 1 / (a * x**2), x**1]
+    exprs = [a / x**2, a / x**3, a * x**3, (x + 1) ** -2, 1 / (a * x**2), x**1,
+             (x + a) ** -1, (x + a) ** -3 + x, (x - a) ** -5]
     k = kernel("f", [x, a], exprs, "test")
     got = _run(k, 1.7, -0.3)
     ref = [float(e.subs({x: 1.7, a: -0.3})) for e in exprs]

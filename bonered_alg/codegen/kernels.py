@@ -33,6 +33,9 @@ class _Printer(NumPyPrinter):
             return b
         if exp.is_Integer and 1 < int(exp) <= 3:
             return "(" + "*".join([b] * int(exp)) + ")"
+        if exp.is_Integer and -3 <= int(exp) < 0:
+            # numpy.power with a negative exponent is several times slower than a division
+            return "(1.0/(" + "*".join([b] * -int(exp)) + "))"
         if exp.is_Integer:
             return f"{b}**{int(exp)}"
         return super()._print_Pow(expr, rational=rational)
