@@ -411,7 +411,6 @@ def _verify(deriv) -> list:
 
     # eq. (9): B_k in the plane of its revolute joint, as a member of each leg's ideal
     xq = (1, *PX[:3])
-    nrm = cv.rotation_norm(xq)
     tvec = cv.translation_times_norm((1, *PX))
     rot_n = sp.Matrix(cv.rotation_matrix_times_norm(xq))
     ok9 = True
@@ -424,7 +423,6 @@ def _verify(deriv) -> list:
                        "joints: OB_k . s_k2 = 0", "confirmed-symbolic" if ok9 else "erratum",
                        None, "|x|^2 OB_k . s_k2 (Study coordinates of B) lies in each tripod "
                        f"leg's ideal (normal form 0){'' if ok9 else ': FAILED'}"))
-    _ = nrm
 
     # eq. (21)-(23): planar IK in (x2, y2, gamma_p), symbolic
     tgp = sp.Symbol("t_gamma_p", **R)
@@ -477,7 +475,7 @@ def _verify(deriv) -> list:
             "torsion) vs the printed chain (10)-(13), (8), (21)-(23) at 40 random poses "
             "(|x|,|y| < 40, z in [180, 280] mm, |alpha|,|beta| < 0.3, |gamma| < 0.8 rad; "
             "ra = rb = 200 mm, d = 15 mm)"))
-    out += _verify_velocity(deriv, ik)
+    out += _verify_velocity(deriv)
     out += _verify_singularities(deriv)
     for ref, what in [("001 eq. (1)-(3)", "joint positions A_k, B_k, C_k"),
                       ("001 eq. (4)-(8)", "loop closure of the tripod and eq. (8)"),
@@ -496,7 +494,7 @@ def _parasitic_of_angles(par):
             sp.sympify(par[y1]).subs(fill).subs(halves), fill, halves)
 
 
-def _verify_velocity(deriv, ik) -> list:
+def _verify_velocity(deriv) -> list:
     import mpmath as mp
     import numpy as np
 
@@ -662,7 +660,6 @@ def _verify_velocity(deriv, ik) -> list:
         "confirmed-numeric" if err34 < 1e-9 else "erratum", float(f"{err34:.2e}"),
         "J_C^-1 J_D (q4..q6 from eq. 21-23) vs the derivative of the derived q4..q6 at 30 "
         "random (x2, y2, gamma), rb = 200 mm"))
-    _ = ik
     return out
 
 
