@@ -269,19 +269,6 @@ x2s, y2s = sp.symbols("x2 y2", **R)
 _SQ3 = sp.sqrt(3)
 
 
-def _rpy(a, b, f):
-    """001 eq. (6): R = Rz(phi) Ry(beta) Rx(alpha)."""
-    return sp.rot_axis3(-f) * sp.rot_axis2(-b) * sp.rot_axis1(-a)
-
-
-def _printed_parasitic(a, b):
-    """001 eq. (10)-(12): phi, x1, y1 (with atan read as the principal value)."""
-    sa, ca, sb, cb = sp.sin(a), sp.cos(a), sp.sin(b), sp.cos(b)
-    f = sp.atan(sa * sb / (ca + cb))
-    sf, cf = sp.sin(f), sp.cos(f)
-    return f, -rb * cb * sf, rb * (ca * cf + sa * sb * sf - cb * cf) / 2
-
-
 def _printed_eq21(xx, yy, gg):
     """001 eq. (21)-(23): q4, q5, q6 of the planar stage."""
     s_, c_ = sp.sin(gg), sp.cos(gg)
