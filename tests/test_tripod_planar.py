@@ -5,8 +5,8 @@ import importlib
 
 import numpy as np
 import pytest
-import sympy as sp
 from independent_tripod_planar import jacobian_fd, joints, platform_b
+from mpmath_reference import assert_ik_matches_mpmath
 from scipy.spatial.transform import Rotation
 
 from bonered_alg.pipeline import derive
@@ -56,20 +56,7 @@ def test_jacobian_against_finite_differences(m):
 
 
 def test_against_mpmath_50_digits(m, d):
-    mod = d.module
-    par = {sp.Symbol(k, real=True): sp.Float(v, 50) for k, v in m.PARAMETERS.items()}
-    for pose in poses(4):
-        q = m.ik(pose, limits=False)
-        vals = dict(par)
-        vals.update({s: sp.Float(v, 50) for s, v in zip(mod.POSE, pose)})
-        study = {k: sp.N(sp.sympify(v).subs(d.constants).subs(vals), 50)
-                 for k, v in d.pose_to_study.items()}
-        vals.update(study)
-        for step in d.steps:
-            exact = sp.N(step.roots()[0].subs(d.constants).subs(vals), 50)
-            vals[step.joint] = exact
-            got = q[m.JOINTS.index(str(step.joint))]
-            assert abs(float(exact) - got) <= 1e-12 * max(1.0, abs(float(exact)))
+    assert_ik_matches_mpmath(m, d, poses(4))
 
 
 def test_zero_torsion_of_platform_b(m):
