@@ -194,6 +194,22 @@ def paper_ik_planar_tripod(p, ra=190.0, rb=190.0):
     return np.stack([q1, q2, q3, q4, q5, q6], axis=-1)
 
 
+def tripod_fk_benchmark(module, poses, n_fk=10_000):
+    """All-modes forward kinematics of a tripod mechanism on the joints of n_fk poses:
+    configurations per second and the largest error of the mode closest to the pose."""
+    p = poses[:n_fk]
+    q = module.ik(p, limits=False)
+    t = median_time(lambda: module.fk(q), 3)
+    sols = module.fk(q)
+    err = np.abs(sols - p[:, None, :])
+    err[..., 3:] = np.abs(np.angle(np.exp(1j * (sols[..., 3:] - p[:, None, 3:]))))
+    return {"fk_configurations": len(p), "fk_modes": module.FK_MODES,
+            "generated_fk_all_modes_configurations_per_s": len(p) / t,
+            "fk_median_us_per_configuration": 1e6 * t / len(p),
+            "fk_max_error_of_nearest_mode": float(np.nanmax(np.nanmin(err.max(axis=-1),
+                                                                       axis=1)))}
+
+
 def planar_tripod_benchmarks(n):
     from bonered_alg.generated import planar_tripod as pt
 
@@ -230,6 +246,7 @@ def planar_tripod_benchmarks(n):
         "max_abs_difference_vs_paper_formulas_mm": float(np.nanmax(np.abs(
             q_gen - paper_ik_planar_tripod(poses)))),
         "fraction_within_limits": float(np.mean(np.all(np.isfinite(pt.ik(poses)), axis=-1))),
+        **tripod_fk_benchmark(pt, poses),
         "derivation_s": median_time(lambda: derive("planar_tripod", use_cache=False), 1),
     }
     print(out, flush=True)
@@ -310,6 +327,7 @@ def tripod_planar_benchmarks(n):
             q_gen - lambdify_ik(poses)))),
         "fraction_within_limits": float(np.mean(np.all(np.isfinite(tp.ik(poses)), axis=-1))),
         "generated_operation_count": tp.OPERATION_COUNT,
+        **tripod_fk_benchmark(tp, poses),
         "derivation_s": median_time(lambda: derive("tripod_planar", use_cache=False), 1),
     }
     print(out, flush=True)

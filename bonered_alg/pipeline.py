@@ -36,6 +36,7 @@ from .elimination.problem import (
 from .errors import EngineTimeoutError, NonClosingMechanismError
 from .fileio import atomic_write_bytes, atomic_write_text
 from .kinematics.ik_plan import IKStep, mode_count, plan
+from .kinematics.rps_forward import DEGREE_BOUND, RPSSystem, count_solutions, rps_system
 from .kinematics.singularities import FactoredPolynomial, discriminant, factored
 from .mechanisms import REGISTRY, load
 from .verification import Verdict, algebra_verdicts, in_ideal
@@ -68,7 +69,9 @@ class ClosureVelocity:
 
 @dataclass(frozen=True)
 class ClosureFK:
-    """Forward kinematics of one closure: lex basis over Q(joints, geometry) and its plan."""
+    """Forward kinematics of one closure: lex basis over Q(joints, geometry) and its plan, or
+    (3-RPS closures) the circle-distance system solved through its eliminant, with the
+    solution count certified by a Groebner basis at a generic configuration."""
 
     closure: str
     problem: ParametricProblem
@@ -76,6 +79,8 @@ class ClosureFK:
     dimension: int
     solutions: int | None
     steps: tuple[IKStep, ...]
+    rps: RPSSystem | None = None
+    count_at: dict | None = None  # the generic configuration of the RPS solution count
 
 
 @dataclass
@@ -190,8 +195,32 @@ def _forward_kinematics(mech: Mechanism, legs: list[LegResult], engine: Engine,
     out = []
     for closure in mech.closures:
         gens = [g for r in legs if r.closure is closure for g in r.result.generators]
+        rps = rps_system(mech, closure)
+        if rps is not None and any(f.rps for f in out):
+            return [], "more than one 3-RPS closure: the code generator solves one per mechanism"
+        if rps is not None:
+            if tuple(closure.platform) != (1, *closure.pose):
+                return [], (f"the {closure.name} is a 3-RPS closure, but its point is not in "
+                            "the chart x0 = 1 the 3-RPS forward kinematics writes")
+            count, at = count_solutions(rps, mech, engine, min(budget_s, FK_BUDGET_S),
+                                        use_cache)
+            if count != DEGREE_BOUND:
+                return [], (f"the {closure.name} has {count} forward-kinematics solutions at "
+                            f"a generic configuration, not the {DEGREE_BOUND} of the iterated "
+                            "resultant: its eliminant would carry extraneous roots")
+            problem = ParametricProblem(
+                f"mechanism {mech.name!r}, closure {closure.name!r}: forward kinematics "
+                "(circle-distance system)", rps.equations, rps.angles, rps.joints)
+            out.append(ClosureFK(closure.name, problem, None, 0, count, (), rps, at))
+            continue
         syms = set().union(*(g.free_symbols for g in gens))
-        pose_unknowns = tuple(y for y in closure.pose if y in syms)
+        # rotation coordinates last: for fixed rotation the closure equations are mostly
+        # linear in the dual part, so the univariate polynomial of the lex basis is in the
+        # rotation and the translation follows linearly (with pivots that do not vanish at
+        # symmetric configurations such as equal strokes, which the reverse order gave)
+        primal = set().union(*(sp.sympify(c).free_symbols for c in closure.platform[:4]))
+        pose_unknowns = tuple(sorted((y for y in closure.pose if y in syms),
+                                     key=lambda y: y in primal))
         # algebraic constants are the last (lowest) unknowns, bound by their minimal
         # polynomials; they are not solved for but substituted (generators stay valid)
         consts = [c for c in mech.constants if c.symbol in syms]
@@ -308,14 +337,20 @@ def ik_module_source(d: Derivation) -> str:
         joint_units=m.JOINT_UNITS, steps=d.steps,
         singularities=[(s.name, s.expression, s.meaning) for s in d.singularities],
         fk_steps=[s for f in d.fk for s in f.steps],
+        rps=next((f.rps for f in d.fk if f.rps), None),
+        rps_unknowns=next((_closure(d, f.closure).pose for f in d.fk if f.rps), ()),
         fk_unknowns=[s.joint for f in d.fk for s in f.steps],
-        fk_system=[g for f in d.fk for g in f.problem.equations],
+        fk_system=[g for f in d.fk if not f.rps for g in f.problem.equations],
         study_to_pose=getattr(m, "STUDY_TO_POSE", None), constants=d.constants,
         fk_note=d.fk_note,
         limits=m.limits(d) if callable(getattr(m, "limits", None)) else (),
         pose_functions=(m.pose_functions(d) if callable(getattr(m, "pose_functions", None))
                         else ()))
     return write_ik_module(spec)
+
+
+def _closure(d: Derivation, name: str) -> Closure:
+    return next(c for c in d.mechanism.closures if c.name == name)
 
 
 def verification_json(d: Derivation) -> str:

@@ -126,9 +126,3 @@ def test_limits_of_table_1(m):
     leg = d1 - np.array([RA, 0, 0])
     angle = np.arccos(r2[:, 2] @ leg / np.linalg.norm(leg))
     assert abs(angle - vals["phi_s1"]) < 1e-12
-
-
-def test_missing_forward_kinematics_says_why(m):
-    with pytest.raises(NotImplementedError, match="planar_tripod.fk: forward kinematics is not "
-                                                  "generated.*tripod"):
-        m.fk(np.full(6, 200.0))

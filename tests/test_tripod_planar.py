@@ -171,8 +171,3 @@ def test_imports_without_sympy():
             "print(m.ik(np.array([0.0, 0.0, 210.0, 0.0, 0.0, 0.0])).round(6).tolist())")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
-
-
-def test_missing_forward_kinematics_says_why(m):
-    with pytest.raises(NotImplementedError, match="tripod_planar.fk: .*tripod"):
-        m.fk(np.full(6, 200.0))

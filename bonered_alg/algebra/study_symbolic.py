@@ -107,3 +107,14 @@ def study_from_transform(m: sp.Matrix, ratio: int = 0) -> Study:
         raise ValueError(f"ratio {ratio} of 004 eq. (4) vanishes for this rotation; use another")
     t = (m[0, 3], m[1, 3], m[2, 3])
     return tuple(sp.expand(c) for c in tuple(x) + cv.dual_part_from_translation(t, x))
+
+
+def pose_from_study(a: Study) -> tuple[sp.Expr, ...]:
+    """``(x, y, z, alpha, beta, gamma)`` of a Study point, ``R = Rz(gamma) Ry(beta) Rx(alpha)``
+    (DESIGN.md section 3): the translation of 004 eq. (13) and the Z-Y-X angles of ``R``
+    (``beta`` in ``[-pi/2, pi/2]``).  Unsimplified, for code generation."""
+    n = cv.rotation_norm(a)
+    t = cv.translation_times_norm(a)
+    r = cv.rotation_matrix_times_norm(a)  # |x|^2 R: the ratios below need no division
+    return (t[0] / n, t[1] / n, t[2] / n, sp.atan2(r[2][1], r[2][2]),
+            sp.atan2(-r[2][0], sp.sqrt(r[0][0] ** 2 + r[1][0] ** 2)), sp.atan2(r[1][0], r[0][0]))

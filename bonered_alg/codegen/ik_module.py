@@ -7,8 +7,10 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from ..algebra import convention as cv
 from ..chains.mechanism import Parameter
 from ..kinematics.ik_plan import IKStep
+from ..kinematics.rps_forward import DEGREE_BOUND, RPSSystem
 from .kernels import Kernel, kernel
 from .runtime_template import RUNTIME
 
@@ -40,6 +42,10 @@ class IKModuleSpec:
     limits: Sequence[tuple] = ()
     # mechanism-specific functions of the pose: (name, output names, expressions, doc)
     pose_functions: Sequence[tuple] = ()
+    # a 3-RPS closure solved through its eliminant (kinematics.rps_forward.RPSSystem) and the
+    # closure's Study coordinates (chart x0 = 1), which come first in the arguments of _fk_pose
+    rps: RPSSystem | None = None
+    rps_unknowns: Sequence[sp.Symbol] = ()
 
 
 def _literal(value) -> str:
@@ -96,7 +102,44 @@ def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
            "pose_to_study": {k: sp.sympify(v).subs(c) for k, v in spec.pose_to_study.items()},
            "study_to_pose": ({k: sp.sympify(v).subs(c) for k, v in spec.study_to_pose.items()}
                              if spec.study_to_pose else None),
+           "rps": _rps_with_constants(spec.rps, c) if spec.rps else None,
            "constants": None})
+
+
+def _rps_with_constants(rps: RPSSystem, c: dict) -> RPSSystem:
+    def sub(e):
+        return sp.sympify(e).subs(c)
+
+    return RPSSystem(
+        rps.closure, rps.angles, rps.joints,
+        tuple(tuple(sub(e) for e in p) for p in rps.centres),
+        tuple(tuple(sub(e) for e in p) for p in rps.platform),
+        tuple(sub(e) for e in rps.equations),
+        tuple(tuple(tuple(sub(e) for e in row) for row in m) for m in rps.coefficients))
+
+
+def _rps_kernels(rps: RPSSystem, joints: Sequence[sp.Symbol],
+                 par: Sequence[sp.Symbol]) -> list[Kernel]:
+    """Kernels of the 3-RPS forward kinematics (see ``kinematics.rps_forward``)."""
+    u = list(rps.angles)
+    eqs = sp.Matrix(list(rps.equations))
+    rot = sp.Matrix(3, 3, sp.symbols("r0:9", real=True))
+    trans = sp.symbols("t0:3", real=True)
+    x = cv.rotation_ratios(rot.tolist())[0]
+    study = tuple(x) + cv.dual_part_from_translation(trans, x)
+    return [
+        kernel("_rps_coefficients", [*joints, *par],
+               [e for m in rps.coefficients for row in m for e in row],
+               "Coefficients C_ij[a][b] of u_i^a u_j^b in e12, e23, e31 (row-major)."),
+        kernel("_rps_equations", [*u, *joints, *par], list(eqs) + list(eqs.jacobian(u)),
+               "e12, e23, e31 and their Jacobian in the revolute tan-half angles."),
+        kernel("_rps_centres", [*u, *joints, *par], [e for p in rps.centres for e in p],
+               "Spherical joint centres B_k in the closure's base frame."),
+        kernel("_rps_platform", list(par), [e for p in rps.platform for e in p],
+               "Spherical joint centres P_k in the platform frame."),
+        kernel("_rps_study", [*rot, *trans], [e / study[0] for e in study[1:]],
+               "Study coordinates (chart x0 = 1) of the platform from R (row-major) and t."),
+    ]
 
 
 def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
@@ -137,10 +180,14 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     bit = len(mode_bits)
     fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
     kernels += fk_kernels
-    if spec.fk_steps:
-        kernels.append(kernel("_fk_pose", [*spec.fk_unknowns, *par],
+    has_fk = bool(spec.fk_steps or spec.rps)
+    if spec.rps:
+        kernels += _rps_kernels(spec.rps, spec.joints, par)
+    if has_fk:
+        kernels.append(kernel("_fk_pose", [*spec.rps_unknowns, *spec.fk_unknowns, *par],
                               [spec.study_to_pose[x] for x in spec.pose],
                               "Pose coordinates (POSE) from the solved Study coordinates."))
+    if spec.fk_steps:
         system = sp.Matrix(list(spec.fk_system))
         kernels.append(kernel(
             "_fk_newton", [*spec.fk_unknowns, *spec.joints, *par],
@@ -235,8 +282,11 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         f"_SOLVE_INDEX = {tuple(list(spec.joints).index(st.joint) for st in spec.steps)!r}",
         f"_CHECK_PIVOTS = {bool(linear)!r}",
         f"FK_UNKNOWNS = {tuple(str(u) for u in spec.fk_unknowns)!r}",
-        f"FK_MODES = {2 ** len(fk_bits) if spec.fk_steps else 0}",
-        f"FK_NOTE = {spec.fk_note if not spec.fk_steps else ''!r}",
+        "# Study coordinates of the 3-RPS closure solved through its eliminant (if any)",
+        f"RPS_UNKNOWNS = {tuple(str(u) for u in spec.rps_unknowns)!r}",
+        f"RPS_MODES = {DEGREE_BOUND if spec.rps else 0}",
+        f"FK_MODES = {(DEGREE_BOUND if spec.rps else 1) * 2 ** len(fk_bits) if has_fk else 0}",
+        f"FK_NOTE = {spec.fk_note if not has_fk else ''!r}",
         f"FK_MODE_BITS = {tuple(fk_bits)!r}",
         f"_FK_INDEX = {tuple(list(spec.fk_unknowns).index(st.joint) for st in spec.fk_steps)!r}",
         "# the generators of the lex basis solved for each Study coordinate in fk",

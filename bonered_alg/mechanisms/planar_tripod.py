@@ -69,12 +69,13 @@ POSE = (x, y, z, alpha, beta, gamma)
 POSE_UNITS = ("mm", "mm", "mm", "rad", "rad", "rad")
 JOINTS = (q1, q2, q3, q4, q5, q6)
 JOINT_UNITS = ("mm",) * 6
-FORWARD_KINEMATICS_PENDING = (
-    "the lex basis of the 3-RPS tripod over Q(q4, q5, q6, ra, rb) exceeds a 120 s budget in "
-    "Singular and its univariate polynomial has degree > 2, which needs a root-finding step "
-    "the code generator does not emit yet (issue 3, item 6, open)")
 POSE_TO_STUDY_SOURCE = ("R = Rz(gamma) Ry(beta) Rx(alpha), 000 eq. 11; MP2 relative to MP1 from "
                         "the parasitic motion derived below; MP1 = MP2 * conj(MP2 in MP1)")
+
+# MP1 in the base (the planar closure's point) and the pose of MP2 from both closures' Study
+# coordinates: MP2 = MP1 * (MP2 in MP1)
+MP1_STUDY = (1, 0, 0, g, 0, v1, v2, 0)
+STUDY_TO_POSE = dict(zip(POSE, ss.pose_from_study(ss.product(MP1_STUDY, (1, *PX)))))
 
 SQRT3 = Constant(s3, s3**2 - 3, sp.sqrt(3), "sqrt(3) of the equilateral layouts (eq. 1-2)")
 
@@ -123,8 +124,8 @@ def _topology() -> nx.MultiGraph:
 
 
 def build() -> Mechanism:
-    planar = Closure("planar 3-PRP mechanism", "MP1", tuple(_planar_legs()),
-                     (1, 0, 0, g, 0, v1, v2, 0), (g, v1, v2),
+    planar = Closure("planar 3-PRP mechanism", "MP1", tuple(_planar_legs()), MP1_STUDY,
+                     (g, v1, v2),
                      note="MP1 moves in the base plane: a rotation g = tan(gamma1/2) about z "
                           "and a translation (x1, y1), v1 = -(x1 + g y1)/2, "
                           "v2 = -(y1 - g x1)/2.")

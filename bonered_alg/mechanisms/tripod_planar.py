@@ -80,13 +80,14 @@ POSE = (x, y, z, alpha, beta, gamma)
 POSE_UNITS = ("mm", "mm", "mm", "rad", "rad", "rad")
 JOINTS = (q1, q2, q3, q4, q5, q6)
 JOINT_UNITS = ("mm",) * 6
-FORWARD_KINEMATICS_PENDING = (
-    "the forward kinematics of the 3-RPS tripod has a univariate polynomial of degree > 2 "
-    "over Q(q1, q2, q3); the root-finding step it needs is not generated yet (issue 3, "
-    "item 6, open)")
 POSE_TO_STUDY_SOURCE = ("R = Rz(gamma) Ry(beta) Rx(alpha) of the end effector; "
                         "tan(gamma_p/2) = x3/x0, B's rotation = end effector * Rz(-gamma_p), "
                         "B's translation from the derived parasitic motion")
+
+# C relative to B (the planar closure's point) and the pose of C from both closures' Study
+# coordinates: C = B * (C in B)
+C_IN_B = (1, 0, 0, g, d * g / 2, v1, v2, -d / 2)
+STUDY_TO_POSE = dict(zip(POSE, ss.pose_from_study(ss.product((1, *PX), C_IN_B))))
 
 SQRT3 = Constant(s3, s3**2 - 3, sp.sqrt(3), "sqrt(3) of the equilateral layouts (eq. 1-3)")
 
@@ -140,8 +141,7 @@ def _topology() -> nx.MultiGraph:
 def build() -> Mechanism:
     tripod = Closure("3-RPS tripod", "B", tuple(_tripod_legs()), (1, *PX), PX,
                      note="B in {O} in the chart x0 = 1 (no half-turns).")
-    planar = Closure("planar 3-PRP mechanism", "C", tuple(_planar_legs()),
-                     (1, 0, 0, g, d * g / 2, v1, v2, -d / 2), (g, v1, v2),
+    planar = Closure("planar 3-PRP mechanism", "C", tuple(_planar_legs()), C_IN_B, (g, v1, v2),
                      note="C relative to B: T(x2, y2, d) Rz(gamma_p) with g = tan(gamma_p/2), "
                           "v1 = -(x2 + g y2)/2, v2 = -(y2 - g x2)/2 (eq. 7, 19).")
     passive = (u1, u2, u3, *S1, *S2, *S3, u4, u5, u6, l4, l5, l6)
