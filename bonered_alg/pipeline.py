@@ -36,7 +36,14 @@ from .elimination.problem import (
 from .errors import EngineTimeoutError, NonClosingMechanismError
 from .fileio import atomic_write_bytes, atomic_write_text
 from .kinematics.ik_plan import IKStep, mode_count, plan
-from .kinematics.rps_forward import DEGREE_BOUND, RPSSystem, count_solutions, rps_system
+from .kinematics.rps_forward import (
+    DEGREE_BOUND,
+    RPSSystem,
+    angles_from_platform,
+    count_solutions,
+    forward_singularity,
+    rps_system,
+)
 from .kinematics.singularities import FactoredPolynomial, discriminant, factored
 from .mechanisms import REGISTRY, load
 from .verification import Verdict, algebra_verdicts, in_ideal
@@ -81,6 +88,7 @@ class ClosureFK:
     steps: tuple[IKStep, ...]
     rps: RPSSystem | None = None
     count_at: dict | None = None  # the generic configuration of the RPS solution count
+    singularity: FactoredPolynomial | None = None  # RPS: where two assembly modes merge
 
 
 @dataclass
@@ -211,7 +219,14 @@ def _forward_kinematics(mech: Mechanism, legs: list[LegResult], engine: Engine,
             problem = ParametricProblem(
                 f"mechanism {mech.name!r}, closure {closure.name!r}: forward kinematics "
                 "(circle-distance system)", rps.equations, rps.angles, rps.joints)
-            out.append(ClosureFK(closure.name, problem, None, 0, count, (), rps, at))
+            det = forward_singularity(rps)
+            sing = factored(
+                f"det_forward_{closure.point}", det,
+                f"forward (type II) singularity of the {closure.name}: det d(e12, e23, e31)/d("
+                + ", ".join(map(str, rps.angles)) + "), zero where two assembly modes merge "
+                "and the platform moves infinitesimally with the legs locked",
+                evaluate=det.subs(angles_from_platform(rps, closure.platform)))
+            out.append(ClosureFK(closure.name, problem, None, 0, count, (), rps, at, sing))
             continue
         syms = set().union(*(g.free_symbols for g in gens))
         # rotation coordinates last: for fixed rotation the closure equations are mostly
@@ -312,6 +327,7 @@ def derive(name: str | ModuleType, engine: Engine | None = None,
         fk, fk_note = _forward_kinematics(mech, legs, engine, budget_s, use_cache)
     timings["forward kinematics (lex bases)"] = time.perf_counter() - t_fk
     dhash = derivation_hash(name, module_file=module.__file__)
+    sing += [f.singularity for f in fk if f.singularity is not None]
     d = Derivation(mech, module, dhash, legs, steps, sing, velocity, fk, timings=timings,
                    fk_note=fk_note)
     if hasattr(module, "analyses"):
@@ -335,7 +351,8 @@ def ik_module_source(d: Derivation) -> str:
         parameters=list(d.mechanism.parameters.values()), pose=m.POSE,
         pose_units=m.POSE_UNITS, pose_to_study=d.pose_to_study, joints=m.JOINTS,
         joint_units=m.JOINT_UNITS, steps=d.steps,
-        singularities=[(s.name, s.expression, s.meaning) for s in d.singularities],
+        singularities=[(s.name, s.expression if s.evaluate is None else s.evaluate, s.meaning)
+                       for s in d.singularities],
         fk_steps=[s for f in d.fk for s in f.steps],
         rps=next((f.rps for f in d.fk if f.rps), None),
         rps_unknowns=next((_closure(d, f.closure).pose for f in d.fk if f.rps), ()),

@@ -145,3 +145,45 @@ def test_unassemblable_leg_lengths_are_reported(name):
     status = m.fk_status(q)
     assert np.isnan(m.fk(q)).all()
     assert set(np.unique(status)) <= {m.NO_REAL_SOLUTION}
+
+
+def _sign_change(m, name, base, z):
+    """The first z along the line where the forward-singularity polynomial changes sign,
+    bisected to 1e-9 mm; None when it does not."""
+    key = next(k for k in m.SINGULARITY_MEANING if k.startswith("det_forward"))
+
+    def value(zz):
+        pose = np.array([*base[:2], zz, *base[3:]])
+        return m.singularities(pose, m.ik(pose, limits=False))[key]
+
+    vals = [value(zz) for zz in z]
+    for a, b, va, vb in zip(z[:-1], z[1:], vals[:-1], vals[1:]):
+        if np.sign(va) != np.sign(vb):
+            for _ in range(60):
+                mid = (a + b) / 2
+                vm = value(mid)
+                a, b, va = (mid, b, vm) if np.sign(vm) == np.sign(va) else (a, mid, va)
+            return (a + b) / 2
+    return None
+
+
+@pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar"])
+def test_forward_singularity_is_where_two_assembly_modes_merge(name):
+    """At a zero of det d(e12, e23, e31)/d(u) along a line in z, the pose's assembly mode
+    meets another one: the forward kinematics folds there, so at the joints of the pose at
+    z* - h the other mode is (to first order) the pose at z* + h, about 2 h away; far from
+    z* the nearest other mode is far."""
+    m = _module(name)
+    base = np.array([5.0, -3.0, 0.0, 0.3, -0.2, 0.1])
+    z_star = _sign_change(m, name, base, np.linspace(40.0, 300.0, 131))
+    assert z_star is not None, "the line crosses a forward singularity"
+
+    def other_mode(zz):
+        pose = np.array([*base[:2], zz, *base[3:]])
+        err = np.sort(_pose_error(m.fk(m.ik(pose, limits=False)), pose[None, :]))
+        assert err[0] < 1e-6  # the pose itself is one of the modes
+        return err[1]
+
+    for h in (0.1, 0.01):
+        assert 0.5 * h < other_mode(z_star - h) < 10 * h, (z_star, h, other_mode(z_star - h))
+    assert other_mode(z_star - 20.0) > 1.0

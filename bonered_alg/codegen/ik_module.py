@@ -233,7 +233,15 @@ def write_ik_module(spec: IKModuleSpec) -> str:
         ]
     sing_src = []
     for name, expr, meaning in spec.singularities:
-        kern = kernel(f"_sing_{name}", args, [sp.sympify(expr).subs(sub)], meaning)
+        # in the Study coordinates of the pose (computed once by _study), not in the pose:
+        # composed with the pose map, a large polynomial makes CSE slow and the kernel long
+        expr = sp.sympify(expr)
+        stray = expr.free_symbols - set(study) - set(spec.joints) - set(par)
+        if stray:
+            raise ValueError(f"{spec.name}: singularity {name} has symbols "
+                             f"{sorted(map(str, stray))} outside the Study coordinates, "
+                             "joints and parameters")
+        kern = kernel(f"_sing_{name}", [*study, *spec.joints, *par], [expr], meaning)
         kernels.append(kern)
         sing_src.append(f"    {name!r}: {kern.name},")
     ops = {k.name: k.operations for k in kernels}

@@ -314,11 +314,12 @@ def singularities(pose, q, **params):
     shape = pose.shape[:-1]
     q = _joints("singularities", q, shape)
     par = _params("singularities", params)
-    cols = [pose[..., i] for i in range(len(POSE))]
-    qc = [q[..., i] for i in range(len(JOINTS))]
-    return {name: numpy.broadcast_to(numpy.asarray(kern(*cols, *qc, *par)[0], dtype=float),
-                                     shape)
-            for name, kern in _SINGULARITIES.items()}
+    with numpy.errstate(all="ignore"):
+        study = _study(*[pose[..., i] for i in range(len(POSE))], *par)
+        qc = [q[..., i] for i in range(len(JOINTS))]
+        return {name: numpy.broadcast_to(numpy.asarray(kern(*study, *qc, *par)[0],
+                                                       dtype=float), shape)
+                for name, kern in _SINGULARITIES.items()}
 
 
 def _fk_inputs(func, q):

@@ -160,3 +160,37 @@ def count_solutions(system: RPSSystem, mech: Mechanism, engine: Engine, budget_s
     for c in consts:
         count //= int(sp.degree(c.minimal_polynomial, c.symbol))
     return count, values
+
+
+def forward_singularity(system: RPSSystem) -> sp.Expr:
+    """``det d(e12, e23, e31)/d(u1, u2, u3)``: zero where two assembly modes merge, the
+    forward (type II) singularity of the tripod; in the leg angles and lengths."""
+    jac = sp.Matrix(system.equations).jacobian(list(system.angles))
+    return sp.expand(jac.det(method="berkowitz"))
+
+
+def angles_from_platform(system: RPSSystem, platform_study: tuple) -> dict[sp.Symbol, sp.Expr]:
+    """Each leg's revolute tan-half angle from the platform pose (a Study point) and the leg
+    length: ``u_k = (d . s_k)/(q_k + d . c_k)``, ``d = B_k - A_k``, where the leg direction is
+    ``cos(theta) c_k + sin(theta) s_k`` (``c_k`` at ``u = 0``, ``s_k`` at ``u = 1``); valid
+    wherever the leg is not turned to ``theta = pi``."""
+    n = cv.rotation_norm(platform_study)
+    rot = sp.Matrix(cv.rotation_matrix_times_norm(platform_study))
+    trans = sp.Matrix(cv.translation_times_norm(platform_study))
+    out = {}
+    for u, q, centre, p in zip(system.angles, system.joints, system.centres, system.platform):
+        centre = sp.Matrix(centre)
+        base = centre.subs(q, 0).applyfunc(sp.cancel)
+        if base.free_symbols & {u}:
+            raise ValueError(f"{system.closure}: the base point of the leg of {q} moves with "
+                             f"{u}; no tan-half angle formula")
+        direction = sp.diff(centre, q)
+        c, s = direction.subs(u, 0), direction.subs(u, 1)
+        # the identity behind the formula, on the chain itself
+        check = (q * direction).dot(s) / (q + (q * direction).dot(c)) - u
+        if sp.simplify(check) != 0:
+            raise ValueError(f"{system.closure}: leg of {q} does not turn its direction as "
+                             "cos(theta) c + sin(theta) s; no tan-half angle formula")
+        d = (rot * sp.Matrix(p) + trans) / n - base
+        out[u] = d.dot(s) / (q + d.dot(c))
+    return out

@@ -22,15 +22,19 @@ class FactoredPolynomial:
     constant: sp.Expr
     factors: tuple[tuple[sp.Expr, int], ...]
     meaning: str = ""
+    # the same quantity in the pose's Study coordinates and the joints, for the generated
+    # code, when ``expression`` is written in other (e.g. passive joint) variables
+    evaluate: sp.Expr | None = None
 
 
-def factored(name: str, expr: sp.Expr, meaning: str = "") -> FactoredPolynomial:
+def factored(name: str, expr: sp.Expr, meaning: str = "",
+             evaluate: sp.Expr | None = None) -> FactoredPolynomial:
     """Factor ``expr`` over the rationals; factors sorted for determinism."""
     expr = sp.expand(expr)
     c, fl = sp.factor_list(expr)
     fl = sorted(((sp.expand(f), int(k)) for f, k in fl), key=lambda t: (sp.count_ops(t[0]),
                                                                       sp.srepr(t[0])))
-    return FactoredPolynomial(name, expr, c, tuple(fl), meaning)
+    return FactoredPolynomial(name, expr, c, tuple(fl), meaning, evaluate)
 
 
 def discriminant(g: sp.Expr, q: sp.Symbol) -> sp.Expr:

@@ -14,6 +14,8 @@ from ..codegen.kernels import kernel
 from ..kinematics.rps_forward import DEGREE_BOUND, PAIRS
 from .latex_util import broken_math, latex, tex_escape, texttt
 
+LONG_FACTOR_TERMS = 200
+
 PREAMBLE = r"""\documentclass[10pt,a4paper]{article}
 \usepackage[margin=2cm]{geometry}
 \usepackage{amsmath,amssymb}
@@ -262,7 +264,16 @@ def _section_velocity(d) -> list[str]:
         out.append(rf"\paragraph{{{tex_escape(s.name)}}} {tex_escape(s.meaning)}. "
                    f"Constant factor ${latex(s.constant)}$, irreducible factors:")
         for k, (f, mult) in enumerate(s.factors, 1):
-            out.append(broken_math(f"f_{{{k}}}" + (f"^{{{mult}}}" if mult > 1 else ""), f))
+            name = f"f_{{{k}}}" + (f"^{{{mult}}}" if mult > 1 else "")
+            terms = len(sp.Add.make_args(f))
+            if terms > LONG_FACTOR_TERMS:  # pages of monomials help no reader
+                degrees = sp.Poly(f, *sorted(f.free_symbols, key=str)).degree_list()
+                out.append(f"${name}$: irreducible, {terms} terms; degrees " + ", ".join(
+                    f"{d} in ${latex(v)}$" for v, d in zip(
+                        sorted(f.free_symbols, key=str), degrees))
+                    + r" (evaluated by the generated \texttt{singularities}).")
+                continue
+            out.append(broken_math(name, f))
         if not s.factors:
             out.append("(none: never singular).")
         notes = getattr(d.module, "SINGULARITY_NOTES", {})
