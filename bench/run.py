@@ -210,6 +210,33 @@ def tripod_fk_benchmark(module, poses, n_fk=10_000):
                                                                        axis=1)))}
 
 
+def hybrid_ik_benchmark(gen, poses, lambdify_ik, lambdify_ik_jac, paper_ik, lam):
+    """IK and IK+Jacobian of a hybrid mechanism's generated module against lambdify (named
+    ``lam`` in the keys) and the hand-written paper formulas (``paper_ik()``)."""
+    n = len(poses)
+    t_gen = median_time(lambda: gen.ik(poses), 5)
+    t_gen_nolim = median_time(lambda: gen.ik(poses, limits=False), 5)
+    t_lam = median_time(lambda: lambdify_ik(poses), 5)
+    t_paper = median_time(paper_ik, 5)
+    t_gen_j = median_time(lambda: (gen.ik(poses), gen.jacobian(poses)), 3)
+    t_lam_j = median_time(lambda: lambdify_ik_jac(poses), 3)
+    return {
+        "poses": n,
+        "generated_ik_with_limits_poses_per_s": n / t_gen,
+        "generated_ik_poses_per_s": n / t_gen_nolim,
+        f"{lam}_ik_poses_per_s": n / t_lam,
+        "paper_formulas_numpy_ik_poses_per_s": n / t_paper,
+        f"ik_speedup_vs_{lam}": t_lam / t_gen_nolim,
+        "ik_ratio_vs_paper_formulas": t_paper / t_gen_nolim,
+        "generated_ik_plus_jacobian_poses_per_s": n / t_gen_j,
+        f"{lam}_ik_plus_jacobian_poses_per_s": n / t_lam_j,
+        f"ik_plus_jacobian_speedup_vs_{lam}": t_lam_j / t_gen_j,
+        "max_abs_difference_vs_paper_formulas_mm": float(np.nanmax(np.abs(
+            gen.ik(poses, limits=False) - paper_ik()))),
+        "fraction_within_limits": float(np.mean(np.all(np.isfinite(gen.ik(poses)), axis=-1))),
+    }
+
+
 def planar_tripod_benchmarks(n):
     from bonered_alg.generated import planar_tripod as pt
 
@@ -224,28 +251,9 @@ def planar_tripod_benchmarks(n):
     geo = {mod.ra: 190.0, mod.rb: 190.0}
     exprs = [ik_exprs[q].subs(geo) for q in mod.JOINTS]
     lambdify_ik, lambdify_ik_jac = lambdified_ik(mod.POSE, exprs, cse=False)
-
-    t_gen = median_time(lambda: pt.ik(poses), 5)
-    t_gen_nolim = median_time(lambda: pt.ik(poses, limits=False), 5)
-    t_lam = median_time(lambda: lambdify_ik(poses), 5)
-    t_paper = median_time(lambda: paper_ik_planar_tripod(poses), 5)
-    t_gen_j = median_time(lambda: (pt.ik(poses), pt.jacobian(poses)), 3)
-    t_lam_j = median_time(lambda: lambdify_ik_jac(poses), 3)
-    q_gen = pt.ik(poses, limits=False)
     out = {
-        "poses": n,
-        "generated_ik_with_limits_poses_per_s": n / t_gen,
-        "generated_ik_poses_per_s": n / t_gen_nolim,
-        "lambdify_ik_poses_per_s": n / t_lam,
-        "paper_formulas_numpy_ik_poses_per_s": n / t_paper,
-        "ik_speedup_vs_lambdify": t_lam / t_gen_nolim,
-        "ik_ratio_vs_paper_formulas": t_paper / t_gen_nolim,
-        "generated_ik_plus_jacobian_poses_per_s": n / t_gen_j,
-        "lambdify_ik_plus_jacobian_poses_per_s": n / t_lam_j,
-        "ik_plus_jacobian_speedup_vs_lambdify": t_lam_j / t_gen_j,
-        "max_abs_difference_vs_paper_formulas_mm": float(np.nanmax(np.abs(
-            q_gen - paper_ik_planar_tripod(poses)))),
-        "fraction_within_limits": float(np.mean(np.all(np.isfinite(pt.ik(poses)), axis=-1))),
+        **hybrid_ik_benchmark(pt, poses, lambdify_ik, lambdify_ik_jac,
+                              lambda: paper_ik_planar_tripod(poses), "lambdify"),
         **tripod_fk_benchmark(pt, poses),
         "derivation_s": median_time(lambda: derive("planar_tripod", use_cache=False), 1),
     }
@@ -302,30 +310,11 @@ def tripod_planar_benchmarks(n):
     geo = {mod.ra: 200.0, mod.rb: 200.0, mod.d: 0.0}
     exprs = [ik_exprs[q].subs(geo) for q in mod.JOINTS]
     lambdify_ik, lambdify_ik_jac = lambdified_ik(mod.POSE, exprs, cse=True)
-
-    t_gen = median_time(lambda: tp.ik(poses), 5)
-    t_gen_nolim = median_time(lambda: tp.ik(poses, limits=False), 5)
-    t_lam = median_time(lambda: lambdify_ik(poses), 5)
-    t_paper = median_time(lambda: paper_ik_tripod_planar(paper), 5)
-    t_gen_j = median_time(lambda: (tp.ik(poses), tp.jacobian(poses)), 3)
-    t_lam_j = median_time(lambda: lambdify_ik_jac(poses), 3)
-    q_gen = tp.ik(poses, limits=False)
     out = {
-        "poses": n,
-        "generated_ik_with_limits_poses_per_s": n / t_gen,
-        "generated_ik_poses_per_s": n / t_gen_nolim,
-        "lambdify_cse_ik_poses_per_s": n / t_lam,
-        "paper_formulas_numpy_ik_poses_per_s": n / t_paper,
-        "ik_speedup_vs_lambdify_cse": t_lam / t_gen_nolim,
-        "ik_ratio_vs_paper_formulas": t_paper / t_gen_nolim,
-        "generated_ik_plus_jacobian_poses_per_s": n / t_gen_j,
-        "lambdify_cse_ik_plus_jacobian_poses_per_s": n / t_lam_j,
-        "ik_plus_jacobian_speedup_vs_lambdify_cse": t_lam_j / t_gen_j,
-        "max_abs_difference_vs_paper_formulas_mm": float(np.nanmax(np.abs(
-            q_gen - paper_ik_tripod_planar(paper)))),
+        **hybrid_ik_benchmark(tp, poses, lambdify_ik, lambdify_ik_jac,
+                              lambda: paper_ik_tripod_planar(paper), "lambdify_cse"),
         "max_abs_difference_vs_lambdify_mm": float(np.nanmax(np.abs(
-            q_gen - lambdify_ik(poses)))),
-        "fraction_within_limits": float(np.mean(np.all(np.isfinite(tp.ik(poses)), axis=-1))),
+            tp.ik(poses, limits=False) - lambdify_ik(poses)))),
         "generated_operation_count": tp.OPERATION_COUNT,
         **tripod_fk_benchmark(tp, poses),
         "derivation_s": median_time(lambda: derive("tripod_planar", use_cache=False), 1),

@@ -118,3 +118,11 @@ def pose_from_study(a: Study) -> tuple[sp.Expr, ...]:
     r = cv.rotation_matrix_times_norm(a)  # |x|^2 R: the ratios below need no division
     return (t[0] / n, t[1] / n, t[2] / n, sp.atan2(r[2][1], r[2][2]),
             sp.atan2(-r[2][0], sp.sqrt(r[0][0] ** 2 + r[1][0] ** 2)), sp.atan2(r[1][0], r[0][0]))
+
+
+def tan_half_substitution(expr: sp.Expr, pairs: Iterable[tuple[sp.Symbol, sp.Symbol]]) -> sp.Expr:
+    """``sin(a)``, ``cos(a)`` -> ``2t/(1+t^2)``, ``(1-t^2)/(1+t^2)`` for each ``(a, t)``: the
+    papers' trigonometric expressions in the tan-half-angle variables of the chains."""
+    for ang, t in pairs:
+        expr = expr.subs({sp.sin(ang): 2 * t / (1 + t**2), sp.cos(ang): (1 - t**2) / (1 + t**2)})
+    return expr

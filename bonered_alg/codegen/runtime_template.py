@@ -280,6 +280,15 @@ def jacobian_status(pose, mode=0, limits=True, **params):
     return status
 
 
+def _pivot_singular(pivots, scales, shape):
+    """True where a pivot dG_k/dq_k of ``_jac`` vanishes relative to its row scale (or is not
+    finite): an input singularity."""
+    singular = numpy.zeros(shape, dtype=bool)
+    for d, sc in zip(pivots, scales):
+        singular |= ~(numpy.abs(d) > _DET_RTOL * sc)
+    return singular
+
+
 def _jacobian(func, pose, mode, params, with_status, limits=True):
     pose, mode, par = _pose(func, pose), _mode(func, mode), _params(func, params)
     q, status = _solve(pose, mode, par, True, limits)
@@ -289,10 +298,8 @@ def _jacobian(func, pose, mode, params, with_status, limits=True):
     qc = [q[..., i] for i in range(n)]
     with numpy.errstate(all="ignore"):
         values = _jac(*cols, *qc, *par)
-        pivots, scales, entries = values[:n], values[n:2 * n], values[2 * n:]
-        singular = numpy.zeros(shape, dtype=bool)
-        for d, sc in zip(pivots, scales):
-            singular |= ~(numpy.abs(d) > _DET_RTOL * sc)
+        singular = _pivot_singular(values[:n], values[n:2 * n], shape)
+        entries = values[2 * n:]
         J = numpy.empty(shape + (n * m,))
         for k, e in enumerate(entries):
             J[..., k] = e
@@ -571,9 +578,7 @@ def _fk_input_singular(pose, q, par, status):
     with numpy.errstate(all="ignore"):
         values = _jac(*[pose[..., i] for i in range(len(POSE))],
                       *[q[..., i] for i in range(n)], *par)
-        singular = numpy.zeros(status.shape, dtype=bool)
-        for d, sc in zip(values[:n], values[n:2 * n]):
-            singular |= ~(numpy.abs(d) > _DET_RTOL * sc)
+        singular = _pivot_singular(values[:n], values[n:2 * n], status.shape)
     return numpy.where((status == OK) & singular, INPUT_SINGULAR, status).astype(numpy.int8)
 
 

@@ -261,11 +261,9 @@ def _printed_eq26():
 
 def _tan_half(expr):
     """Trigonometric functions of alpha, beta, gamma(1) as rational functions of tan-halves."""
-    out = expr
-    for ang, t in ((alpha, ta), (beta, tb), (gamma, sp.Symbol("t_gamma", **R)),
-                   (gam1, sp.Symbol("t_gamma1", **R))):
-        out = out.subs({sp.sin(ang): 2 * t / (1 + t**2), sp.cos(ang): (1 - t**2) / (1 + t**2)})
-    return out
+    return ss.tan_half_substitution(expr, ((alpha, ta), (beta, tb),
+                                           (gamma, sp.Symbol("t_gamma", **R)),
+                                           (gam1, sp.Symbol("t_gamma1", **R))))
 
 
 def _random_poses(n, seed=3):

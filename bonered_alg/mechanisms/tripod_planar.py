@@ -40,6 +40,7 @@ import sympy as sp
 
 from ..algebra import convention as cv
 from ..algebra import study_symbolic as ss
+from ..algebra.study_symbolic import tan_half_substitution as _tan_half
 from ..chains.double_triangle import prp_legs
 from ..chains.joints import Role
 from ..chains.mechanism import Closure, Constant, Mechanism, Parameter, joint, leg
@@ -329,12 +330,6 @@ def _paper_ik(vals):
     sub = {x2s: x2v, y2s: y2v, gp_: gg, rb: rr_b}
     qs += [mp.mpf(sp.N(e.subs(sub), 40)) for e in _printed_eq21(x2s, y2s, gp_)]
     return qs, (f, xb, yb, z1v, x2v, y2v, rot)
-
-
-def _tan_half(expr, pairs):
-    for ang, t in pairs:
-        expr = expr.subs({sp.sin(ang): 2 * t / (1 + t**2), sp.cos(ang): (1 - t**2) / (1 + t**2)})
-    return expr
 
 
 def _random_paper_poses(n, seed=5):
