@@ -20,12 +20,14 @@ from types import ModuleType
 import sympy as sp
 
 from . import __version__
+from .algebra.study_symbolic import quadric
 from .chains.joints import Leg
 from .chains.mechanism import Closure, Mechanism
 from .codegen.ik_module import IKModuleSpec, write_ik_module
 from .elimination import polyterms as pt
+from .elimination import sphere_leg
 from .elimination.cache import eliminate, lex_basis
-from .elimination.closure import leg_problem
+from .elimination.closure import MU, leg_problem
 from .elimination.engines import DEFAULT_BUDGET_S, Engine, get_engine
 from .elimination.problem import (
     EliminationProblem,
@@ -44,7 +46,12 @@ from .kinematics.rps_forward import (
     forward_singularity,
     rps_system,
 )
-from .kinematics.singularities import FactoredPolynomial, discriminant, factored
+from .kinematics.singularities import (
+    FactoredPolynomial,
+    discriminant,
+    factored,
+    large_product,
+)
 from .mechanisms import REGISTRY, load
 from .verification import Verdict, algebra_verdicts, in_ideal
 
@@ -61,6 +68,7 @@ class LegResult:
     product: tuple[sp.Expr, ...]
     problem: EliminationProblem
     result: EliminationResult
+    certificate: str = ""  # closed-form leg ideal (sphere_leg): why no elimination was run
 
 
 @dataclass(frozen=True)
@@ -142,8 +150,9 @@ def derivation_hash(name: str, package_dir: Path = PACKAGE_DIR,
                     module_file: str | None = None) -> str:
     """SHA-256 of every source file that shapes ``name``'s outputs (engine excluded).
 
-    That is the whole package except the command line and the *other* mechanism modules, so
-    editing one mechanism re-derives only that one.  The engine is excluded on purpose: both
+    That is the whole package except the command line, the workspace tool (it reads the
+    generated modules, it does not shape them) and the *other* mechanism modules, so editing
+    one mechanism re-derives only that one.  The engine is excluded on purpose: both
     engines return the same normalized basis (``tests/test_engines_agree.py``).
     ``module_file`` adds a mechanism module that lives outside the package.
     """
@@ -155,7 +164,7 @@ def derivation_hash(name: str, package_dir: Path = PACKAGE_DIR,
         if rel.startswith("mechanisms/") and rel not in ("mechanisms/__init__.py",
                                                           f"mechanisms/{name}.py"):
             continue
-        if rel in ("cli.py",):
+        if rel in ("cli.py",) or rel.startswith("workspace/"):
             continue
         h.update(rel.encode() + b"\0" + path.read_bytes() + b"\0")
     return h.hexdigest()
@@ -176,7 +185,10 @@ def _velocity_and_singularities(mech: Mechanism, steps: list[IKStep]):
         ji = gens.jacobian(joints)
         jo = gens.jacobian(sp.Matrix(pose))
         velocity.append(ClosureVelocity(closure.name, tuple(joints), tuple(pose), ji, jo))
-        out.append(factored(f"det_Ji_{closure.point}", ji.det(method="berkowitz"),
+        diag = [ji[i, i] for i in range(ji.shape[0])]
+        det_ji = (sp.Mul(*diag, evaluate=False) if (ji.is_lower or ji.is_upper)
+                  and large_product(diag) else ji.det(method="berkowitz"))
+        out.append(factored(f"det_Ji_{closure.point}", det_ji,
                             f"input singularity of the {closure.name}: det dG/d("
                             + ", ".join(map(str, joints)) + ")"))
         if jo.shape[0] == jo.shape[1]:
@@ -291,6 +303,33 @@ def _extra_ik_generators(module: ModuleType, mech: Mechanism,
     return out
 
 
+def _distance_leg_problem(mech: Mechanism, closure: Closure,
+                          leg: Leg) -> tuple[EliminationProblem | None, str]:
+    """For a leg that only fixes a distance (U-P-S, S-P-S), the problem whose reduced basis
+    is its ideal ``<Study quadric, sphere condition>`` without eliminating anything, and the
+    certificate that this is the leg's ideal (:mod:`.elimination.sphere_leg`); (None, "")
+    for any other leg, which is eliminated."""
+    d = sphere_leg.recognize(leg)
+    if d is None:
+        return None, ""
+    full = leg_problem(mech, closure, leg)
+    passive = tuple(s for s in full.eliminate if s != MU)
+    params = {sp.Symbol(n, real=True): sp.nsimplify(p.value)
+              for n, p in mech.parameters.items() if p.value is not None}
+    consts = {c.symbol: c.value for c in mech.constants}
+    try:
+        note = sphere_leg.certify(leg, d, closure.platform, passive, params, consts)
+    except sphere_leg.NotADistanceLeg:
+        return None, ""
+    eqs = (quadric(closure.platform),
+           sphere_leg.sphere_condition(d, closure.platform,
+                                       sphere_leg.minimal_polynomials(consts)))
+    eqs += tuple(sp.expand(c.minimal_polynomial) for c in mech.constants
+                 if c.symbol in full.keep)
+    return EliminationProblem(full.context + " (closed-form distance-leg ideal)", eqs, (),
+                              full.keep), note
+
+
 def derive(name: str | ModuleType, engine: Engine | None = None,
            budget_s: float = DEFAULT_BUDGET_S, use_cache: bool = True) -> Derivation:
     """Derive a mechanism (registered name, or a mechanism module) completely, in memory."""
@@ -304,7 +343,11 @@ def derive(name: str | ModuleType, engine: Engine | None = None,
     legs: list[LegResult] = []
     for closure in mech.closures:
         for leg in closure.legs:
-            problem = leg_problem(mech, closure, leg)
+            t_leg = time.perf_counter()
+            problem, certificate = _distance_leg_problem(mech, closure, leg)
+            if certificate:
+                timings[f"certify distance leg {leg.name}"] = time.perf_counter() - t_leg
+            problem = problem or leg_problem(mech, closure, leg)
             result = eliminate(problem, engine, budget_s, use_cache)
             if result.is_unit_ideal:
                 raise NonClosingMechanismError(
@@ -312,7 +355,7 @@ def derive(name: str | ModuleType, engine: Engine | None = None,
                     f"{closure.point} of the {closure.name}: its elimination ideal is <1> "
                     "(no pose satisfies the closure equations)")
             timings[f"eliminate {leg.name} ({engine.name})"] = result.seconds
-            legs.append(LegResult(closure, leg, leg.product(), problem, result))
+            legs.append(LegResult(closure, leg, leg.product(), problem, result, certificate))
     pool = [(f"{r.closure.point}/{r.leg.name}", g) for r in legs for g in r.result.generators]
     pool += _extra_ik_generators(module, mech, legs)
     t1 = time.perf_counter()

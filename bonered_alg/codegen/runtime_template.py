@@ -229,6 +229,12 @@ def ik_status(pose, mode=0, limits=True, **params):
     return status
 
 
+def ik_and_status(pose, mode=0, limits=True, **params):
+    """``(ik(...), ik_status(...))`` from one solve: what a workspace scan needs."""
+    return _solve(_pose("ik_and_status", pose), _mode("ik_and_status", mode),
+                  _params("ik_and_status", params), True, limits)
+
+
 def ik_all(pose, limits=True, **params):
     """All working modes: array ``(..., MODES, len(JOINTS))``; NaN where a mode is unreachable."""
     pose, par = _pose("ik_all", pose), _params("ik_all", params)
@@ -278,6 +284,11 @@ def jacobian_status(pose, mode=0, limits=True, **params):
     """Status per pose for ``jacobian``: an IK status, or INPUT_SINGULAR."""
     _, status = _jacobian("jacobian_status", pose, mode, params, True, limits)
     return status
+
+
+def jacobian_and_status(pose, mode=0, limits=True, **params):
+    """``(jacobian(...), jacobian_status(...))`` from one evaluation."""
+    return _jacobian("jacobian_and_status", pose, mode, params, True, limits)
 
 
 def _pivot_singular(pivots, scales, shape):

@@ -50,20 +50,33 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
     steps: list[IKStep] = []
     remaining = list(joints)
     jset = set(joints)
+    # (rank, operation count, degree) of generator i in joint q, computed once each:
+    # re-deriving them in every round took minutes on the large Stewart generators
+    ranks: dict[tuple[int, sp.Symbol], tuple | None] = {}
+
+    def rank_of(i: int, g: sp.Expr, q: sp.Symbol):
+        if (i, q) not in ranks:
+            deg = _degree(g, q)
+            if deg not in (1, 2):
+                ranks[i, q] = None
+            else:
+                rank = 0 if deg == 1 else (1 if _definite(
+                    _coefficient(g, q, 2).subs(constants)) else 2)
+                ranks[i, q] = (rank, sp.count_ops(g), deg)
+        return ranks[i, q]
+
+    free = [g.free_symbols & jset for _, g in generators]
     while remaining:
         best = None
         for q in remaining:
-            for src, g in generators:
-                unknown = (g.free_symbols & jset) - set(solved)
-                if unknown != {q}:
+            for i, (src, g) in enumerate(generators):
+                if free[i] - set(solved) != {q}:
                     continue
-                deg = sp.degree(g, q)
-                if deg not in (1, 2):
+                info = rank_of(i, g, q)
+                if info is None:
                     continue
-                rank = 0 if deg == 1 else (1 if _definite(
-                    sp.Poly(g, q).coeff_monomial(q**2).subs(constants))
-                                           else 2)
-                cand = (rank, sp.count_ops(g), str(q), src, q, g, deg)
+                rank, ops, deg = info
+                cand = (rank, ops, str(q), src, q, g, deg)
                 if best is None or cand[:3] < best[:3]:
                     best = cand
         if best is None:
@@ -78,6 +91,19 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
         solved.append(q)
         remaining.remove(q)
     return steps
+
+
+def _degree(g: sp.Expr, q: sp.Symbol) -> int:
+    """Degree of the polynomial ``g`` in ``q``, read off its terms (``sp.degree`` builds a
+    Poly over all other symbols first: seconds on a generator of 800 terms)."""
+    terms = sp.Add.make_args(sp.expand(g)) if not g.is_Add else g.args
+    return max((int(t.as_powers_dict().get(q, 0)) for t in terms), default=0)
+
+
+def _coefficient(g: sp.Expr, q: sp.Symbol, k: int) -> sp.Expr:
+    """Coefficient of ``q**k`` in the polynomial ``g``, read off its terms."""
+    terms = sp.Add.make_args(sp.expand(g)) if not g.is_Add else g.args
+    return sp.Add(*[t / q**k for t in terms if int(t.as_powers_dict().get(q, 0)) == k])
 
 
 def _compact(c: sp.Expr, max_terms: int = 40) -> sp.Expr:

@@ -27,16 +27,52 @@ class FactoredPolynomial:
     evaluate: sp.Expr | None = None
 
 
+# a product whose expansion would have more terms than this is factored factor by factor
+# and kept as a product (the 6x6 det Ji of the Stewart platform: 16^6 terms expanded)
+PRODUCT_LIMIT = 20_000
+
+
+def _terms(e: sp.Expr) -> int:
+    return len(sp.Add.make_args(sp.expand(e)))
+
+
+def large_product(factors: list[sp.Expr]) -> bool:
+    """True when the expanded product of ``factors`` would exceed ``PRODUCT_LIMIT`` terms
+    (estimated as the product of their term counts)."""
+    n = 1
+    for f in factors:
+        n *= _terms(f)
+    return n > PRODUCT_LIMIT
+
+
 def factored(name: str, expr: sp.Expr, meaning: str = "",
              evaluate: sp.Expr | None = None) -> FactoredPolynomial:
-    """Factor ``expr`` over the rationals; factors sorted for determinism."""
-    expr = sp.expand(expr)
-    c, fl = sp.factor_list(expr)
+    """Factor ``expr`` over the rationals; factors sorted for determinism.  An unevaluated
+    product (``sp.Mul(..., evaluate=False)``, see :func:`large_product`) is factored factor
+    by factor and kept unexpanded."""
+    if isinstance(expr, sp.Mul) and large_product(list(expr.args)):
+        c, merged = sp.Integer(1), {}
+        for arg in expr.args:
+            ca, fa = sp.factor_list(sp.expand(arg))
+            c *= ca
+            for f, k in fa:
+                f = sp.expand(f)
+                merged[f] = merged.get(f, 0) + int(k)
+        fl = list(merged.items())
+    else:
+        expr = sp.expand(expr)
+        c, fl = sp.factor_list(expr)
     fl = sorted(((sp.expand(f), int(k)) for f, k in fl), key=lambda t: (sp.count_ops(t[0]),
                                                                       sp.srepr(t[0])))
     return FactoredPolynomial(name, expr, c, tuple(fl), meaning, evaluate)
 
 
 def discriminant(g: sp.Expr, q: sp.Symbol) -> sp.Expr:
-    """Discriminant of ``g`` in ``q`` (degree 2: ``B^2 - 4AC``)."""
+    """Discriminant of ``g`` in ``q`` (degree 2: ``B^2 - 4AC``); ``-4 A C`` as an unevaluated
+    product when ``B = 0`` and the product is large."""
+    poly = sp.Poly(sp.expand(g), q)
+    if poly.degree() == 2 and poly.coeff_monomial(q) == 0:
+        a, c = poly.coeff_monomial(q**2), poly.coeff_monomial(1)
+        if large_product([a, c]):
+            return sp.Mul(-4, a, c, evaluate=False)
     return sp.expand(sp.discriminant(sp.expand(g), q))

@@ -5,7 +5,7 @@ from __future__ import annotations
 import importlib
 from types import ModuleType
 
-REGISTRY = ("pro_hep_lct", "planar_tripod", "tripod_planar")
+REGISTRY = ("pro_hep_lct", "planar_tripod", "tripod_planar", "stewart")
 
 
 def load(name: str) -> ModuleType:

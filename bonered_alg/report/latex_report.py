@@ -109,8 +109,11 @@ def _section_elimination(d) -> list[str]:
         p = r.problem
         out += [rf"\subsection{{Leg {tex_escape(r.leg.name)}}}",
                 f"Platform point ${tex_escape(r.closure.point)} = {_study(r.closure.platform)}$. "
-                + tex_escape(r.closure.note),
-                f"Closure equations ({len(p.equations)}):"]
+                + tex_escape(r.closure.note)]
+        if r.certificate:
+            out += _distance_leg(r)
+            continue
+        out.append(f"Closure equations ({len(p.equations)}):")
         for k, e in enumerate(p.equations, 1):
             out.append(broken_math(f"e_{{{k}}}", e))
         out += [
@@ -120,6 +123,40 @@ def _section_elimination(d) -> list[str]:
             f"{r.result.dimension} in {len(p.keep)} variables."]
         for k, g in enumerate(r.result.generators, 1):
             out.append(broken_math(f"g_{{{k}}}", g))
+    return out
+
+
+DISTANCE_LEG_MAX_TERMS = 120
+
+
+def _constant_symbols(r) -> list:
+    """Symbols of the leg problem bound by a univariate equation (algebraic constants)."""
+    return [next(iter(e.free_symbols)) for e in r.problem.equations
+            if len(e.free_symbols) == 1]
+
+
+def _distance_leg(r) -> list[str]:
+    """A leg whose ideal is the pulled-back sphere condition (no elimination run)."""
+    p = r.problem
+    out = ["This leg only fixes the distance between a base point and a platform point. Its "
+           "ideal is not eliminated but written down, the Study quadric and the sphere "
+           r"condition $q^2 |x|^2 - 4 |y'|^2$ with $[x:y'] = T(-A)\,X\,T(B)$, and certified "
+           "(the steps are in \\texttt{bonered\\_alg/elimination/sphere\\_leg.py}): "
+           + tex_escape(r.certificate) + ".",
+           f"Defining equations ({len(p.equations)}):"]
+    for k, e in enumerate(p.equations, 1):
+        out.append(broken_math(f"e_{{{k}}}", e))
+    gens = r.result.generators
+    short = [g for g in gens if len(sp.Add.make_args(sp.expand(g))) <= DISTANCE_LEG_MAX_TERMS]
+    consts = [c for c in _constant_symbols(r) if c in p.keep]
+    bound = (", with " + ", ".join(f"${latex(c)}$" for c in consts) + " as variables bound by "
+             "their minimal polynomials" if consts else "")
+    out.append(f"Reduced Groebner basis (Hilbert dimension {r.result.dimension} in "
+               f"{len(p.keep)} variables{bound}): {len(gens)} generators; the "
+               f"{len(gens) - len(short)} with more than {DISTANCE_LEG_MAX_TERMS} terms are "
+               "omitted here.")
+    for k, g in enumerate(short, 1):
+        out.append(broken_math(f"g_{{{k}}}", g))
     return out
 
 

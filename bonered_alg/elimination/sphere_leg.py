@@ -1,0 +1,197 @@
+"""Closed-form ideal of a leg that only fixes a distance (U-P-S and S-P-S legs).
+
+A leg ``T(A) R1 T_axis(q) R2 T(-B)`` (``R1``, ``R2`` passive rotations, ``q`` the active
+stroke) keeps the platform point ``B`` at distance ``|q|`` from the base point ``A``.  With
+``M = T(-A) X T(B)`` (linear in the platform's Study point ``X``) the translation ``t`` of
+``M = R1 T(q) R2`` has ``|t| = |q|``, and from ``y = -1/2 t x`` (004 eq. 13)
+
+    S(X, q) = q^2 (x0^2 + x1^2 + x2^2 + x3^2) - 4 (y0'^2 + y1'^2 + y2'^2 + y3'^2) = 0,
+
+Husty's sphere condition pulled back by the two translations.  Eliminating the passive
+joints of such a leg with a Groebner basis is expensive (a 6-UPS leg: more than 600 s in
+Singular), and unnecessary: :func:`certify` proves that ``<Study quadric, S>`` is the leg's
+ideal up to radical, i.e. that both define the closure of the leg's configurations:
+
+1. ``S`` vanishes identically on the leg's chain product (symbolic substitution), and so
+   does the Study quadric: the leg's configurations lie on ``V(quadric, S)``;
+2. in the chart ``x0 = 1`` the quadric is linear in ``y0``; with ``y0`` substituted, ``S``
+   is a quadratic polynomial in ``(y1, y2, y3, q)`` whose quadratic part has full rank 4
+   over the field of the other symbols and whose coefficients have no common factor, so
+   it is irreducible over the algebraic closure (:func:`_irreducible`), and
+   ``V(quadric, S)`` is an irreducible variety of dimension 6 in (pose, q);
+3. the chain's map (passive joints, q) -> pose has rank 6 at a random rational point
+   (50-digit singular values), so the leg's configurations fill a 6-dimensional set.
+
+An irreducible variety contains no other closed set of its own dimension, so the two agree
+(Cox-Little-O'Shea, Ch. 9 Sect. 4).  A leg that fails a step (e.g. an R-P-S leg, rank 5)
+is not a distance leg, and the pipeline eliminates it instead.
+"""
+
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+
+import mpmath
+import sympy as sp
+
+from ..algebra import study_symbolic as ss
+from ..chains.joints import Leg, Role
+
+RANK_DIGITS = 50
+RANK_TOL = mpmath.mpf(10) ** -30
+
+
+class NotADistanceLeg(Exception):
+    """A certificate step failed: the leg's ideal is not the sphere condition."""
+
+
+@dataclass(frozen=True)
+class DistanceLeg:
+    """A leg recognized as ``T(A) R1 T(q) R2 T(-B)``: base point, platform point, stroke."""
+
+    leg: str
+    base: tuple[sp.Expr, sp.Expr, sp.Expr]
+    platform: tuple[sp.Expr, sp.Expr, sp.Expr]
+    stroke: sp.Symbol
+
+
+def _vector(f) -> tuple[sp.Expr, ...] | None:
+    if f.kind != "translation" or f.role is not Role.GEOMETRIC:
+        return None
+    if f.axis is None:
+        return tuple(f.args)
+    out = [sp.Integer(0)] * 3
+    out[ss.AXES[f.axis]] = f.args[0]
+    return tuple(out)
+
+
+def recognize(leg: Leg) -> DistanceLeg | None:
+    """The shape ``[T(A)] R... T(q) R... [T(-B)]`` with ``q`` the only active parameter and
+    only passive rotations in between; None for any other leg."""
+    fs = list(leg.factors)
+    base = plat = (sp.Integer(0),) * 3
+    if fs and (v := _vector(fs[0])) is not None:
+        base, fs = v, fs[1:]
+    if fs and (v := _vector(fs[-1])) is not None:
+        plat, fs = tuple(-c for c in v), fs[:-1]
+    active = [i for i, f in enumerate(fs) if f.role is Role.ACTIVE]
+    if len(active) != 1:
+        return None
+    i = active[0]
+    stroke = fs[i]
+    if stroke.kind != "translation" or stroke.axis is None or not stroke.args[0].is_Symbol:
+        return None
+    others = fs[:i] + fs[i + 1:]
+    if not others or any(f.role is not Role.PASSIVE or f.kind not in ("rotation", "quaternion")
+                         for f in others):
+        return None
+    return DistanceLeg(leg.name, base, plat, stroke.args[0])
+
+
+def moved(d: DistanceLeg, platform: tuple) -> tuple[sp.Expr, ...]:
+    """``M = T(-A) X T(B)``: linear in the platform's Study point ``X``."""
+    return ss.product(ss.translation_vector(tuple(-c for c in d.base)), tuple(platform),
+                      ss.translation_vector(d.platform))
+
+
+def sphere_condition(d: DistanceLeg, platform: tuple,
+                     minimal_polynomials: dict | None = None) -> sp.Expr:
+    """``q^2 |x|^2 - 4 |y'|^2`` (module docstring), expanded.  A layout rational in the
+    geometric parameters gives the numerator, divided by its content in those parameters
+    (a non-zero constant for a given mechanism), so the result is primitive in the
+    platform's coordinates and the stroke; algebraic constants (``minimal_polynomials``:
+    symbol -> its minimal polynomial) are reduced first."""
+    m = moved(d, platform)
+    expr = d.stroke**2 * sum(c**2 for c in m[:4]) - 4 * sum(c**2 for c in m[4:])
+    num, _ = sp.fraction(sp.together(sp.expand(expr)))
+    num = sp.expand(num)
+    for c, mp in (minimal_polynomials or {}).items():
+        if num.has(c):  # c first: dense division with c as the main variable
+            gens = (c, *sorted(num.free_symbols - {c}, key=str))
+            num = sp.Poly(num, *gens).rem(sp.Poly(mp, *gens)).as_expr()
+    if num == 0:
+        return num
+    gens = sorted(set().union(*(sp.sympify(c).free_symbols for c in platform)) | {d.stroke},
+                  key=str)
+    _, prim = sp.Poly(num, *gens).primitive()
+    return sp.expand(prim.as_expr())
+
+
+def _irreducible(expr: sp.Expr, quadratic: tuple[sp.Symbol, ...],
+                 geometry: set[sp.Symbol]) -> bool:
+    """True when ``expr``, of degree 2 in ``quadratic`` with coefficients in the other
+    symbols, is irreducible over the algebraic closure: a quadratic polynomial factors only
+    when its homogenized form has rank <= 2 (the rank of its quadratic part, a determinant
+    over the field of the other symbols, is a lower bound; it is required to be full here),
+    and by Gauss's lemma only when its coefficients have a common factor; a common factor
+    in the ``geometry`` symbols alone (the ring's ``(1 + t^2)`` of a rational layout) is a
+    non-zero constant for a given mechanism and allowed."""
+    poly = sp.Poly(expr, *quadratic)
+    if poly.total_degree() != 2:
+        return False
+    if sp.expand(sp.hessian(poly.as_expr(), quadratic).det(method="berkowitz")) == 0:
+        return False  # rank of the quadratic part < 4: not certified here
+    content = sp.gcd_list([sp.expand(c) for c in poly.coeffs()])
+    return sp.sympify(content).free_symbols <= geometry
+
+
+def _rank(leg: Leg, d: DistanceLeg, passive: tuple, params: dict, seed: int,
+          points: int = 3) -> int:
+    """Rank of d(chart coordinates)/d(passive, q), the largest over ``points`` random
+    rational points (the generic rank; a point can be special, e.g. a universal joint at
+    90 deg), from singular values at 50 digits."""
+    prod = leg.product()
+    variables = [*passive, d.stroke]
+    chart = [c / prod[0] for c in prod[1:]]
+    jac = sp.Matrix(chart).jacobian(variables).subs(params)
+    rng = random.Random(seed)
+    best = 0
+    for _ in range(points):
+        point = {v: sp.Rational(rng.randint(-1000, 1000), 1009) for v in variables}
+        point[d.stroke] = sp.Rational(rng.randint(150_000, 300_000), 1009)
+        with mpmath.workdps(RANK_DIGITS):
+            m = mpmath.matrix([[mpmath.mpf(sp.N(e, RANK_DIGITS + 10)) for e in row]
+                               for row in jac.subs(point).tolist()])
+            sv = mpmath.svd_r(m, compute_uv=False)
+            top = max(abs(x) for x in sv)
+            best = max(best, sum(1 for s in sv if abs(s) > RANK_TOL * top))
+    return best
+
+
+def minimal_polynomials(constants: dict) -> dict:
+    """symbol -> minimal polynomial over Q of each algebraic constant's value."""
+    return {c: sp.minimal_polynomial(v, c) for c, v in constants.items()}
+
+
+def certify(leg: Leg, d: DistanceLeg, platform: tuple, passive: tuple, params: dict,
+            constants: dict) -> str:
+    """Run the three steps of the module docstring; returns their record, or raises
+    :class:`NotADistanceLeg` naming the step that failed.  ``params`` are numeric values
+    of the geometry for the rank test, ``constants`` the algebraic constants' values."""
+    # the rank test first: it is what rules out legs with fewer joints (R-P-S: rank 5)
+    rank = _rank(leg, d, passive, {**params, **constants}, seed=sum(map(ord, leg.name)))
+    if rank != 6:
+        raise NotADistanceLeg(f"leg {leg.name}: the chain's image has dimension {rank}, not 6")
+    chain = leg.product()
+    minpolys = minimal_polynomials(constants)
+    gen = sphere_condition(d, chain, minpolys)
+    if gen != 0:
+        raise NotADistanceLeg(f"leg {leg.name}: the sphere condition does not vanish on the "
+                              "chain product")
+    if sp.expand(ss.quadric(chain)) != 0:  # pragma: no cover - holds for every chain
+        raise NotADistanceLeg(f"leg {leg.name}: the chain product is off the Study quadric")
+    xs = tuple(platform)
+    y0 = xs[4]
+    solved = sp.solve(ss.quadric(xs), y0)
+    if len(solved) != 1 or xs[0] != 1:
+        raise NotADistanceLeg(f"leg {leg.name}: the platform point is not in the chart x0 = 1")
+    reduced = sp.expand(sphere_condition(d, xs, minpolys).subs(y0, solved[0]))
+    geometry = set(params) | set(constants)
+    if not _irreducible(reduced, (*xs[5:], d.stroke), geometry):
+        raise NotADistanceLeg(f"leg {leg.name}: the sphere condition factors on the quadric")
+    return (f"leg {leg.name}: distance |{d.stroke}| between base point A = "
+            f"{tuple(map(str, d.base))} and platform point B = {tuple(map(str, d.platform))}; "
+            "the sphere condition vanishes on the chain product, is irreducible on the Study "
+            f"quadric, and the chain's image has dimension {rank} (rank test, "
+            f"{RANK_DIGITS} digits)")

@@ -1,0 +1,83 @@
+"""Stewart platform (6-UPS): the closed-form leg ideal and the generated functions, against
+the independent numeric model (tests/independent_stewart.py); the papers print no Stewart
+equation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+from bonered_alg.generated import stewart as gen
+
+from bonered_alg.chains.joints import Role
+from bonered_alg.chains.mechanism import joint, leg
+from bonered_alg.elimination import sphere_leg
+from bonered_alg.mechanisms import load
+from tests import independent_stewart as ind
+
+RNG = np.random.default_rng(20261122)
+
+
+def _random_poses(n):
+    return np.column_stack([RNG.uniform(-40, 40, n), RNG.uniform(-40, 40, n),
+                            RNG.uniform(180, 260, n), *(RNG.uniform(-0.2, 0.2, (3, n)))])
+
+
+def test_ik_matches_independent_leg_lengths():
+    poses = _random_poses(300)
+    for geo in ({}, {"ra": 190.0, "rb": 190.0}, {"ta": 0.25, "tb": 0.0625}):
+        q = gen.ik(poses, limits=False, **geo)
+        ref = np.array([ind.ik(p, **geo) for p in poses])
+        assert np.max(np.abs(q - ref)) < 1e-9
+
+
+def test_limits_match_independent_joint_angles():
+    poses = _random_poses(200)
+    q = gen.ik(poses, limits=False)
+    vals = gen.limit_values(poses, q)
+    at_a, at_b = np.array([ind.joint_angles(p) for p in poses]).transpose(1, 0, 2)
+    for k in range(6):
+        assert np.max(np.abs(vals[f"phi_u{k + 1}"] - at_a[:, k])) < 1e-7
+        assert np.max(np.abs(vals[f"phi_s{k + 1}"] - at_b[:, k])) < 1e-7
+
+
+def test_jacobian_matches_finite_differences():
+    poses = _random_poses(20)
+    J = gen.jacobian(poses, limits=False)
+    h = 1e-6
+    for p, jp in zip(poses, J):
+        fd = np.stack([(ind.ik(p + h * e) - ind.ik(p - h * e)) / (2 * h) for e in np.eye(6)],
+                      axis=1)
+        assert np.max(np.abs(jp - fd)) < 1e-5
+
+
+def test_negative_strokes_are_the_other_modes():
+    pose = np.array([5.0, -3.0, 220.0, 0.05, -0.02, 0.1])
+    q_all = gen.ik_all(pose, limits=False)
+    assert np.allclose(np.abs(q_all), ind.ik(pose), atol=1e-9)
+    assert np.all(q_all[0] > 0) and np.all(q_all[-1] < 0)
+
+
+def test_distance_leg_is_certified_and_rps_leg_is_not():
+    """The U-P-S leg passes the three certificate steps; an R-P-S leg (one revolute before
+    the stroke) has a 5-dimensional image and is left to elimination."""
+    mod = load("stewart")
+    mech = mod.build()
+    closure = mech.closures[0]
+    from bonered_alg.pipeline import _distance_leg_problem
+
+    problem, note = _distance_leg_problem(mech, closure, closure.legs[1])
+    assert problem is not None and "dimension 6" in note
+    assert problem.eliminate == ()
+    # the same leg with its universal joint reduced to one revolute
+    u, e = sp.Symbol("u", real=True), sp.symbols("e0:4", real=True)
+    q = sp.Symbol("q", real=True)
+    rps = leg("R", joint("t", "offset", "A", vector=(100, 0, 0)),
+              joint("t", "revolute", "R", "y", u, Role.PASSIVE),
+              joint("t", "prismatic", "P", "z", q, Role.ACTIVE),
+              joint("t", "spherical", "S", e, Role.PASSIVE),
+              joint("t", "offset", "B", vector=(-50, 0, 0)))
+    d = sphere_leg.recognize(rps)
+    assert d is not None
+    with pytest.raises(sphere_leg.NotADistanceLeg, match="dimension 5"):
+        sphere_leg.certify(rps, d, closure.platform, (u, *e), {}, {})
