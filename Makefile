@@ -19,9 +19,11 @@ install: $(STAMP) system-deps
 
 derive: install
 	$(PY) -m bonered_alg.cli derive
+	$(PY) -m bonered_alg.cli comparison
 
 derive-force: install
 	$(PY) -m bonered_alg.cli derive --force
+	$(PY) -m bonered_alg.cli comparison --force
 
 test: install
 	$(PY) -m pytest -q

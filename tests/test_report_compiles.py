@@ -10,10 +10,10 @@ from tests.conftest import ROOT
 
 
 @pytest.mark.skipif(shutil.which("latexmk") is None, reason="no LaTeX toolchain")
-@pytest.mark.parametrize("name", REGISTRY)
+@pytest.mark.parametrize("name", [*REGISTRY, "bone_reduction_workspace"])
 def test_report_compiles(tmp_path, name):
-    for f in (ROOT / "derivations").glob(f"{name}.*"):
-        if f.suffix in (".tex", ".png"):
+    for f in (ROOT / "derivations").glob("*"):
+        if f.name == f"{name}.tex" or f.suffix == ".png":
             shutil.copy(f, tmp_path)
     out = subprocess.run(["latexmk", "-pdf", "-interaction=nonstopmode", "-halt-on-error",
                           f"{name}.tex"], cwd=tmp_path, capture_output=True, text=True,

@@ -1,0 +1,174 @@
+"""``bonered-alg workspace`` and ``bonered-alg comparison``: argument parsing and output."""
+
+from __future__ import annotations
+
+import csv
+import io
+import itertools
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ..fileio import atomic_write_text
+from .grid import ANGLES, Axis, Grid, fixed_from_user, user_value
+from .membership import Criteria, load_module
+from .plots import overlay
+from .scan import ScanResult, scan
+
+POINTS_LIMIT = 2_000_000  # reachable samples written to the points CSV at most
+
+
+def _pair(text: str, what: str) -> tuple[str, str]:
+    name, sep, value = text.partition("=")
+    if not sep or not name or not value:
+        raise ValueError(f"{what} {text!r}: expected NAME=VALUE")
+    return name.strip(), value.strip()
+
+
+def _numbers(text: str, count: int, what: str) -> list[float]:
+    parts = text.split(":")
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        raise ValueError(f"{what}: {text!r} is not {count} numbers separated by ':'") from None
+    if len(values) != count or not all(math.isfinite(v) for v in values):
+        raise ValueError(f"{what}: expected {count} finite numbers separated by ':', got "
+                         f"{text!r}")
+    return values
+
+
+def parse_axes(items: list[str]) -> list[Axis]:
+    axes = []
+    for item in items:
+        name, spec = _pair(item, "--axis")
+        lo, hi, step = _numbers(spec, 3, f"--axis {name}")
+        axes.append(Axis.from_user(name, lo, hi, step))
+    return axes
+
+
+def parse_limits(items: list[str]) -> dict[str, tuple[float, float]]:
+    out = {}
+    for item in items:
+        pattern, spec = _pair(item, "--limit")
+        lo, hi = _numbers(spec, 2, f"--limit {pattern}")
+        if pattern.startswith("phi"):  # joint angles: degrees at the command line
+            lo, hi = math.radians(lo), math.radians(hi)
+        out[pattern] = (lo, hi)
+    return out
+
+
+def parse_params(items: list[str], module) -> dict[str, float]:
+    out = {}
+    for item in items:
+        name, value = _pair(item, "--param")
+        if name not in module.PARAMETERS:
+            raise ValueError(f"{module.MECHANISM}: unknown parameter {name!r}; expected some "
+                             f"of {list(module.PARAMETERS)}")
+        (out[name],) = _numbers(value, 1, f"--param {name}")
+    return out
+
+
+def progress_bar(done: int, total: int, stream=sys.stderr) -> None:
+    width = 40
+    filled = int(width * done / max(total, 1))
+    stream.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {100 * done / max(total, 1):5.1f}%"
+                 f" ({done}/{total} chunks)")
+    if done >= total:
+        stream.write("\n")
+    stream.flush()
+
+
+def summary_csv(res: ScanResult, statuses: dict[int, str]) -> str:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["quantity", "value", "unit"])
+    w.writerow(["mechanism", res.mechanism, ""])
+    w.writerow(["grid", res.grid.describe(), ""])
+    w.writerow(["samples", res.samples, ""])
+    w.writerow(["reachable", res.count, ""])
+    units = [("deg" if a.name in ANGLES else "mm") for a in res.grid.axes]
+    w.writerow(["volume", f"{res.volume:.6g}", "*".join(
+        "mm" if a.name not in ANGLES else "rad" for a in res.grid.axes if a.n > 1)])
+    for a, unit in zip(res.grid.axes, units):
+        lo, hi = res.ranges.get(a.name, (math.nan, math.nan))
+        w.writerow([f"{a.name}_min", f"{user_value(a.name, lo):.6g}", unit])
+        w.writerow([f"{a.name}_max", f"{user_value(a.name, hi):.6g}", unit])
+        w.writerow([f"{a.name}_range", f"{user_value(a.name, hi - lo):.6g}", unit])
+        w.writerow([f"{a.name}_step", f"{user_value(a.name, a.step):.6g}", unit])
+    for code, n in res.reasons.items():
+        w.writerow([f"samples with status {code} ({statuses.get(code, 'near singularity')})",
+                    n, ""])
+    return buf.getvalue()
+
+
+def points_csv(res: ScanResult) -> str | None:
+    if res.mask is None or res.count > POINTS_LIMIT:
+        return None
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([f"{a.name} ({'deg' if a.name in ANGLES else 'mm'})" for a in res.grid.axes])
+    idx = np.nonzero(res.mask.ravel())[0]
+    for start in range(0, idx.size, 1 << 16):
+        sub = np.unravel_index(idx[start:start + (1 << 16)], res.grid.shape)
+        cols = [np.array([user_value(a.name, a.lo + a.step * i) for i in s])
+                for a, s in zip(res.grid.axes, sub)]
+        for row in zip(*cols):
+            w.writerow([f"{v:.6g}" for v in row])
+    return buf.getvalue()
+
+
+def workspace(args) -> int:
+    module = load_module(args.mechanism)
+    axes = parse_axes(args.axis)
+    if not axes:
+        raise ValueError("give at least one --axis NAME=LO:HI:STEP")
+    fixed = fixed_from_user(module.POSE, dict(_pair(f, "--fix") for f in args.fix))
+    grid = Grid(tuple(module.POSE), tuple(axes), fixed)
+    params = parse_params(args.param, module)
+    criteria = Criteria(tuple(args.mode) or (0,), parse_limits(args.limit), args.min_margin)
+    client = None
+    if args.dask:
+        client = "local" if args.dask == "local" else _dask_client(args.dask)
+    print(f"{module.MECHANISM}: {grid.size} samples: {grid.describe()}", file=sys.stderr)
+    res = scan(module.MECHANISM, grid, criteria, chunk=args.chunk, workers=args.workers,
+               client=client, progress=None if args.no_progress else progress_bar, **params)
+    out = args.out
+    written = []
+    path = out / f"{module.MECHANISM}_summary.csv"
+    atomic_write_text(path, summary_csv(res, module.STATUS))
+    written.append(path)
+    pts = points_csv(res)
+    if pts is not None:
+        path = out / f"{module.MECHANISM}_points.csv"
+        atomic_write_text(path, pts)
+        written.append(path)
+    if res.mask is not None:
+        scanned = [a.name for a in axes if a.n > 1]
+        for a, b in itertools.combinations(scanned, 2):
+            written += overlay([res], b, a, f"{module.MECHANISM}: ({a}, {b})",
+                               out / f"{module.MECHANISM}_{a}_{b}")
+    print(f"{res.count} of {res.samples} samples reachable in {res.seconds:.2f} s "
+          f"({res.rate:.3g} samples/s)")
+    for a in axes:
+        lo, hi = res.ranges.get(a.name, (math.nan, math.nan))
+        unit = "deg" if a.name in ANGLES else "mm"
+        print(f"  {a.name}: [{user_value(a.name, lo):.4g}, {user_value(a.name, hi):.4g}] {unit}"
+              f" (step {user_value(a.name, a.step):.4g})")
+    print("wrote " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def _dask_client(address: str):
+    from dask.distributed import Client
+
+    return Client(address)
+
+
+def comparison(args) -> int:
+    from .comparison_report import write
+
+    written = write(Path(args.root).resolve(), args.workers, args.force)
+    print("comparison: " + (", ".join(p.name for p in written) if written else "up to date"))
+    return 0

@@ -1,0 +1,193 @@
+"""Chunked, parallel workspace scans: reachable set, ranges per coordinate, volume.
+
+:func:`scan` classifies every sample of a :class:`~.grid.Grid` with
+:func:`~.membership.classify`, one chunk at a time, and keeps only running totals (count,
+per-axis extremes, reasons) and, optionally, a bit-packed mask (one bit per sample: 10^8
+samples are 12.5 MB).  Chunks run on a local process pool (all cores by default) or, for
+scans that outgrow one machine, on a dask cluster (``client=`` a ``distributed.Client``,
+or ``"local"`` for a ``LocalCluster``); at most ``2 x workers`` chunks are in flight, so
+memory stays bounded at any resolution.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import time
+from collections import Counter
+from collections.abc import Callable, Mapping
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from dataclasses import dataclass, field
+from multiprocessing import get_context
+
+import numpy as np
+
+from .grid import Grid
+from .membership import DEFAULT_CRITERIA, IN_WORKSPACE, Criteria, classify, load_module
+
+DEFAULT_CHUNK = 1 << 16
+MASK_LIMIT = 2 * 10**8  # samples beyond which the mask is not kept unless asked
+
+
+@dataclass(frozen=True)
+class ChunkResult:
+    start: int
+    count: int
+    lo: tuple[float, ...]  # per axis, over the chunk's reachable samples (inf if none)
+    hi: tuple[float, ...]
+    reasons: dict[int, int]
+    packed: bytes | None
+
+
+@dataclass
+class ScanResult:
+    """Totals of a scan (internal units: mm, rad)."""
+
+    mechanism: str
+    grid: Grid
+    criteria: Criteria
+    params: dict
+    count: int = 0
+    ranges: dict[str, tuple[float, float]] = field(default_factory=dict)
+    reasons: dict[int, int] = field(default_factory=dict)
+    mask: np.ndarray | None = None
+    seconds: float = 0.0
+
+    @property
+    def samples(self) -> int:
+        return self.grid.size
+
+    @property
+    def volume(self) -> float:
+        """Reachable samples x cell volume (mm^k rad^l of the grid's axes)."""
+        return self.count * self.grid.cell_volume
+
+    @property
+    def rate(self) -> float:
+        return self.samples / self.seconds if self.seconds > 0 else float("nan")
+
+    def extent(self, name: str) -> float:
+        lo, hi = self.ranges.get(name, (np.nan, np.nan))
+        return hi - lo
+
+
+def scan_chunk(mechanism: str, grid: Grid, start: int, stop: int, criteria: Criteria,
+               params: Mapping, keep_mask: bool) -> ChunkResult:
+    """Classify samples ``start:stop`` of ``grid`` (runs in a worker)."""
+    poses = grid.poses(start, stop)
+    code = classify(mechanism, poses, criteria, **params)
+    inside = code == IN_WORKSPACE
+    lo, hi = [], []
+    for a in grid.axes:
+        col = poses[inside, grid.pose_names.index(a.name)]
+        lo.append(float(col.min()) if col.size else np.inf)
+        hi.append(float(col.max()) if col.size else -np.inf)
+    values, counts = np.unique(code, return_counts=True)
+    packed = np.packbits(inside).tobytes() if keep_mask else None
+    return ChunkResult(start, int(inside.sum()), tuple(lo), tuple(hi),
+                       {int(v): int(c) for v, c in zip(values, counts)}, packed)
+
+
+def _merge(result: ScanResult, parts: list[ChunkResult], keep_mask: bool) -> None:
+    lo = [np.inf] * len(result.grid.axes)
+    hi = [-np.inf] * len(result.grid.axes)
+    reasons: Counter = Counter()
+    for p in parts:
+        result.count += p.count
+        lo = [min(a, b) for a, b in zip(lo, p.lo)]
+        hi = [max(a, b) for a, b in zip(hi, p.hi)]
+        reasons.update(p.reasons)
+    result.ranges = {a.name: (lo[i], hi[i]) for i, a in enumerate(result.grid.axes)
+                     if lo[i] <= hi[i]}
+    result.reasons = dict(sorted(reasons.items()))
+    if keep_mask:
+        parts = sorted(parts, key=lambda p: p.start)
+        bits = np.unpackbits(np.frombuffer(b"".join(p.packed for p in parts), dtype=np.uint8))
+        result.mask = bits[:result.grid.size].astype(bool).reshape(result.grid.shape)
+
+
+def _run_local(tasks, workers, progress):
+    if workers == 1:
+        out = []
+        for i, t in enumerate(tasks):
+            out.append(scan_chunk(*t))
+            if progress:
+                progress(i + 1, len(tasks))
+        return out
+    out, pending = [], set()
+    it = iter(tasks)
+    with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
+        for t in it:
+            pending.add(pool.submit(scan_chunk, *t))
+            if len(pending) >= 2 * workers:
+                done, pending = wait(pending, return_when=FIRST_COMPLETED)
+                out += [f.result() for f in done]
+                if progress:
+                    progress(len(out), len(tasks))
+        for f in pending:
+            out.append(f.result())
+            if progress:
+                progress(len(out), len(tasks))
+    return out
+
+
+def _run_dask(tasks, client, workers, progress):
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    own = None
+    if client == "local":
+        own = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=None)
+        client = Client(own)
+    try:
+        it = iter(tasks)
+        futures = [client.submit(scan_chunk, *t, pure=False)
+                   for t in itertools.islice(it, 2 * workers)]
+        seq = as_completed(futures)
+        out = []
+        for fut in seq:
+            out.append(fut.result())
+            fut.release()
+            nxt = next(it, None)
+            if nxt is not None:
+                seq.add(client.submit(scan_chunk, *nxt, pure=False))
+            if progress:
+                progress(len(out), len(tasks))
+        return out
+    finally:
+        if own is not None:
+            client.close()
+            own.close()
+
+
+def scan(mechanism: str, grid: Grid, criteria: Criteria = DEFAULT_CRITERIA, *,
+         chunk: int = DEFAULT_CHUNK, workers: int | None = None, client=None,
+         keep_mask: bool | None = None, progress: Callable[[int, int], None] | None = None,
+         **params) -> ScanResult:
+    """Scan ``grid`` for ``mechanism`` (a generated module's name).
+
+    ``workers``: processes (default: all cores); ``client``: None (local processes), a
+    ``dask.distributed.Client``, or ``"local"``; ``keep_mask``: keep the reachable mask
+    (default: when the grid has at most 2e8 samples); ``progress(done, total)`` is called
+    after each chunk; ``params``: geometric parameters passed to the generated functions.
+    """
+    module = load_module(mechanism)
+    criteria.check(module)
+    if tuple(grid.pose_names) != tuple(module.POSE):
+        raise ValueError(f"{mechanism}: the grid's pose coordinates {grid.pose_names} are "
+                         f"not the module's POSE {module.POSE}")
+    if chunk % 8:
+        raise ValueError(f"chunk must be a multiple of 8 (the mask is bit-packed), got {chunk}")
+    workers = workers or os.cpu_count() or 1
+    keep = grid.size <= MASK_LIMIT if keep_mask is None else keep_mask
+    tasks = [(module.MECHANISM, grid, a, b, criteria, dict(params), keep)
+             for a, b in grid.chunks(chunk)]
+    t0 = time.perf_counter()
+    if client is None:
+        parts = _run_local(tasks, workers, progress)
+    else:
+        parts = _run_dask(tasks, client, workers, progress)
+    result = ScanResult(module.MECHANISM, grid, criteria, dict(params))
+    _merge(result, parts, keep)
+    result.seconds = time.perf_counter() - t0
+    return result

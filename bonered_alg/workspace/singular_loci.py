@@ -1,0 +1,70 @@
+"""Where the singularity polynomials vanish inside a scanned workspace.
+
+For each polynomial of the generated module (``SINGULARITY_MEANING``), evaluated at the
+grid's samples with their IK: two grid neighbours that are both reachable and where the
+polynomial has opposite signs (or is zero) bracket a point of the singularity locus inside
+the workspace, to the grid's resolution.  No such pair means the locus does not cross the
+reachable set at this resolution (001 Sect. 3: "all the singular configurations identified
+in Sect. 2.3 remain outside of the mechanism workspace").
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from .membership import load_module
+from .scan import ScanResult
+
+CHUNK = 1 << 15
+
+
+def polynomial_signs(res: ScanResult, mode: int = 0, params: Mapping | None = None
+                     ) -> dict[str, np.ndarray]:
+    """Sign (-1, 0, 1; 0 also where undefined) of each singularity polynomial on every
+    grid sample (kinematics only, limits off), shaped like the grid."""
+    module = load_module(res.mechanism)
+    params = dict(params if params is not None else res.params)
+    out = {name: np.zeros(res.grid.size, dtype=np.int8) for name in module.SINGULARITY_MEANING}
+    for a, b in res.grid.chunks(CHUNK):
+        poses = res.grid.poses(a, b)
+        q = module.ik(poses, mode, False, **params)
+        values = module.singularities(poses, q, **params)
+        for name, v in values.items():
+            s = np.sign(v)
+            s[~np.isfinite(v)] = 0
+            out[name][a:b] = s
+    return {k: v.reshape(res.grid.shape) for k, v in out.items()}
+
+
+def crossings(res: ScanResult, signs: Mapping[str, np.ndarray]) -> dict[str, int]:
+    """Per polynomial: the number of pairs of reachable grid neighbours (along any axis)
+    across which it changes sign or vanishes."""
+    if res.mask is None:
+        raise ValueError(f"{res.mechanism}: the scan kept no mask (keep_mask=False)")
+    out = {}
+    for name, s in signs.items():
+        n = 0
+        for axis in range(res.mask.ndim):
+            lo = [slice(None)] * res.mask.ndim
+            hi = [slice(None)] * res.mask.ndim
+            lo[axis], hi[axis] = slice(None, -1), slice(1, None)
+            both = res.mask[tuple(lo)] & res.mask[tuple(hi)]
+            flip = (s[tuple(lo)] * s[tuple(hi)]) <= 0
+            n += int(np.count_nonzero(both & flip))
+        out[name] = n
+    return out
+
+
+def signs_on_reachable(res: ScanResult, signs: Mapping[str, np.ndarray]) -> dict[str, dict]:
+    """Per polynomial: how many reachable samples it is positive, negative and zero on.
+    Both signs on the reachable set mean the locus crosses it, or separates parts of it
+    (a locus on an excluded grid plane, e.g. an input singularity where the IK status is
+    INPUT_SINGULAR, is not seen by :func:`crossings`)."""
+    if res.mask is None:
+        raise ValueError(f"{res.mechanism}: the scan kept no mask (keep_mask=False)")
+    return {name: {"positive": int(np.count_nonzero(res.mask & (s > 0))),
+                   "negative": int(np.count_nonzero(res.mask & (s < 0))),
+                   "zero_or_undefined": int(np.count_nonzero(res.mask & (s == 0)))}
+            for name, s in signs.items()}

@@ -1,0 +1,298 @@
+"""Workspace tool: grids, chunked and parallel scans, membership against the independent
+numeric models, boundary search, command line, plots."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+from bonered_alg.cli import main
+from bonered_alg.workspace import bone_reduction as br
+from bonered_alg.workspace.grid import Axis, Grid
+from bonered_alg.workspace.membership import IN_WORKSPACE, classify
+from bonered_alg.workspace.plots import overlay
+from bonered_alg.workspace.ranges import coordinate_range
+from bonered_alg.workspace.scan import scan
+from tests import independent_planar_tripod as ind_pt
+from tests import independent_stewart as ind_st
+from tests import independent_tripod_planar as ind_tp
+
+POSE = ("x", "y", "z", "alpha", "beta", "gamma")
+RNG = np.random.default_rng(4)
+
+
+def _small_grid(z=210.0):
+    return Grid(POSE, (Axis.from_user("x", -60, 60, 8), Axis.from_user("y", -60, 60, 8),
+                       Axis.from_user("gamma", -30, 30, 5)), {"z": z, "alpha": 0.0, "beta": 0.0})
+
+
+def test_grid_chunks_cover_every_sample_once():
+    g = _small_grid()
+    full = np.concatenate([g.poses(a, b) for a, b in g.chunks(100)])
+    xs, ys, gs = np.meshgrid(*(a.values() for a in g.axes), indexing="ij")
+    assert full.shape == (g.size, 6)
+    assert np.array_equal(full[:, 0], xs.ravel()) and np.array_equal(full[:, 5], gs.ravel())
+    assert np.all(full[:, 2] == 210.0)
+    assert g.axes[2].n == 13 and math.isclose(math.degrees(g.axes[2].step), 5.0)
+
+
+@pytest.mark.parametrize("bad, match", [
+    (dict(axes=(Axis("q", 0, 1, 2),), fixed={}), "not pose coordinates"),
+    (dict(axes=(Axis("x", 0, 1, 2),), fixed={"z": 1.0}), "neither grid axes nor fixed"),
+    (dict(axes=(Axis("x", 0, 1, 2),), fixed={"x": 1, "y": 0, "z": 0, "alpha": 0, "beta": 0,
+                                              "gamma": 0}), "both grid axes and fixed"),
+])
+def test_grid_errors_name_the_coordinate(bad, match):
+    with pytest.raises(ValueError, match=match):
+        Grid(POSE, **bad)
+
+
+def test_axis_errors():
+    with pytest.raises(ValueError, match="lo <= hi"):
+        Axis("x", 2.0, 1.0, 3)
+    with pytest.raises(ValueError, match="step must be positive"):
+        Axis.from_user("x", 0, 1, 0)
+
+
+def test_scan_is_the_same_serial_parallel_chunked_and_on_dask():
+    g = _small_grid()
+    ref = scan("tripod_planar", g, workers=1, chunk=1 << 16)
+    assert 0 < ref.count < g.size
+    assert ref.count == int(np.count_nonzero(classify("tripod_planar", g.poses(0, g.size))
+                                             == IN_WORKSPACE))
+    for kwargs in (dict(workers=2, chunk=64), dict(workers=1, chunk=8)):
+        other = scan("tripod_planar", g, **kwargs)
+        assert other.count == ref.count and np.array_equal(other.mask, ref.mask)
+        assert other.ranges == ref.ranges
+    pytest.importorskip("dask.distributed")
+    dask_res = scan("tripod_planar", g, workers=1, chunk=256, client="local")
+    assert np.array_equal(dask_res.mask, ref.mask) and dask_res.reasons == ref.reasons
+
+
+def _stewart_sample(n, xy=80.0, z=(170.0, 300.0), ang=0.35):
+    return np.column_stack([RNG.uniform(-xy, xy, n), RNG.uniform(-xy, xy, n),
+                            RNG.uniform(*z, n), *(RNG.uniform(-ang, ang, (3, n)))])
+
+
+def test_stewart_membership_matches_independent_model():
+    poses = _stewart_sample(3000)
+    got = classify("stewart", poses) == IN_WORKSPACE
+    ref = np.array([ind_st.in_workspace(p) for p in poses])
+    assert 0.05 < ref.mean() < 0.95  # both kinds of sample are present
+    assert np.array_equal(got, ref)
+
+
+def test_stewart_membership_with_000_limits_matches_independent_model():
+    poses = _stewart_sample(2000, 50.0, (160.0, 220.0), 0.2)
+    got = classify("stewart", poses, br.STEWART_000, **br.STEWART_000_PARAMS) == IN_WORKSPACE
+    ref = np.array([ind_st.in_workspace(p, (175.0, 250.0), np.radians(45), np.radians(20),
+                                        ra=190.0, rb=190.0) for p in poses])
+    assert 0.02 < ref.mean() < 0.98
+    assert np.array_equal(got, ref)
+
+
+def _tripod_planar_inside(pose):
+    """001 Sect. 3 limits on the independent model (tests/independent_tripod_planar.py)."""
+    q, res = ind_tp.joints(pose)
+    if res > 1e-9:
+        return None  # the independent least-squares solve did not converge: not decided
+    rb_, tb, *_ = ind_tp.platform_b(pose)
+    a_pts = ind_tp._corners(200.0, [-30, 90, 210])
+    b_loc = ind_tp._corners(200.0, [-30, 90, 210])
+    legs = [tb + rb_ @ b_loc[k] - a_pts[k] for k in range(3)]
+    ang = [math.acos(rb_[:, 2] @ v / np.linalg.norm(v)) for v in legs]
+    return bool(np.all((q[:3] >= 160) & (q[:3] <= 320)) and np.all((q[3:] >= 120)
+                & (q[3:] <= 325)) and max(ang) <= math.radians(20))
+
+
+def _planar_tripod_inside(pose):
+    """000 Table 1 limits, eq. 45-46, on the independent model
+    (tests/independent_planar_tripod.py)."""
+    q = ind_pt.ik(pose)
+    x1, y1, g1 = ind_pt.mp1_pose(pose)
+    rot = ind_pt.rot("z", pose[5]) @ ind_pt.rot("y", pose[4]) @ ind_pt.rot("x", pose[3])
+    normal = ind_pt.rot("z", -g1) @ rot[:, 2]
+    dw = ind_pt.world_d(pose)
+    ok = bool(np.all((q >= 175) & (q <= 250)))
+    for k in range(3):
+        leg = ind_pt.rot("z", -g1) @ (dw[k] - np.array([x1, y1, 0.0])) - ind_pt.C[k]
+        n = np.linalg.norm(leg)
+        ok &= math.acos(leg[2] / n) <= math.radians(45)
+        ok &= math.acos(normal @ leg / n) <= math.radians(20)
+    return ok
+
+
+@pytest.mark.parametrize("name, inside, centre, span", [
+    ("tripod_planar", _tripod_planar_inside, 240.0, (80, 40, 0.3, 0.9)),
+    ("planar_tripod", _planar_tripod_inside, 215.0, (25, 20, 0.15, 0.3)),
+])
+def test_hybrid_membership_matches_independent_models(name, inside, centre, span):
+    n = 300
+    xy, dz, tilt, turn = span
+    poses = np.column_stack([RNG.uniform(-xy, xy, n), RNG.uniform(-xy, xy, n),
+                             RNG.uniform(centre - dz, centre + dz, n),
+                             *(RNG.uniform(-tilt, tilt, (2, n))), RNG.uniform(-turn, turn, n)])
+    got = classify(name, poses) == IN_WORKSPACE
+    ref = [inside(p) for p in poses]
+    decided = np.array([r is not None for r in ref])
+    assert decided.mean() > 0.9
+    ref = np.array([bool(r) for r in ref])
+    assert 0.05 < ref[decided].mean() < 0.95
+    assert np.array_equal(got[decided], ref[decided])
+
+
+def test_boundary_search_brackets_the_independent_boundary():
+    """001 Table 1 set-up: the alpha range of tripod_planar at the homing position; just
+    inside each end is in the workspace of the independent model, just outside is not."""
+    ref = [0.0, 0.0, 210.0, 0.0, 0.0, 0.0]
+    r = coordinate_range("tripod_planar", ref, "alpha", br.ANGLE_BOUND, br.ANGLE_STEP,
+                         br.ANGLE_TOL)
+    assert r.lo < 0 < r.hi
+    eps = 2 * br.ANGLE_TOL
+    for end, out in ((r.lo, -1), (r.hi, 1)):
+        inner, outer = list(ref), list(ref)
+        inner[3], outer[3] = end - out * 1e-9, end + out * eps
+        assert _tripod_planar_inside(inner)
+        assert not _tripod_planar_inside(outer)
+
+
+def test_workspace_command_writes_table_and_plots(tmp_path, capsys):
+    rc = main(["workspace", "stewart", "--axis", "x=-60:60:20", "--axis", "y=-60:60:20",
+               "--fix", "z=220", "--fix", "alpha=0", "--fix", "beta=0", "--fix", "gamma=10",
+               "--workers", "1", "--no-progress", "--out", str(tmp_path)])
+    assert rc == 0
+    summary = (tmp_path / "stewart_summary.csv").read_text()
+    g = Grid(POSE, (Axis.from_user("x", -60, 60, 20), Axis.from_user("y", -60, 60, 20)),
+             {"z": 220.0, "alpha": 0.0, "beta": 0.0, "gamma": math.radians(10)})
+    count = int(np.count_nonzero(classify("stewart", g.poses(0, g.size)) == IN_WORKSPACE))
+    assert f"reachable,{count}," in summary
+    points = (tmp_path / "stewart_points.csv").read_text().splitlines()
+    assert len(points) == count + 1
+    png = (tmp_path / "stewart_x_y.png").read_bytes()
+    main(["workspace", "stewart", "--axis", "x=-60:60:20", "--axis", "y=-60:60:20",
+          "--fix", "z=220", "--fix", "alpha=0", "--fix", "beta=0", "--fix", "gamma=10",
+          "--workers", "1", "--no-progress", "--out", str(tmp_path)])
+    assert (tmp_path / "stewart_x_y.png").read_bytes() == png  # deterministic
+    assert (tmp_path / "stewart_x_y.pdf").read_bytes()[:4] == b"%PDF"
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--axis", "q=0:1:1"], "not pose coordinates"),
+    (["--axis", "x=0:1"], "3 finite numbers"),
+    (["--axis", "x=0:10:1", "--param", "rr=3"], "unknown parameter 'rr'"),
+    (["--axis", "x=0:10:1", "--limit", "zz*=0:1"], "no limit matches 'zz\\*'"),
+])
+def test_workspace_command_errors(argv, match, tmp_path, capsys):
+    base = ["workspace", "stewart", "--fix", "y=0", "--fix", "z=220", "--fix", "alpha=0",
+            "--fix", "beta=0", "--fix", "gamma=0", "--no-progress", "--out", str(tmp_path)]
+    rc = main(base + argv)
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert re.search(match, err), err
+
+
+def test_overlay_is_deterministic(tmp_path):
+    res = scan("stewart", _small_grid(220.0), workers=1)
+    a = overlay([res], "y", "x", "t", tmp_path / "a")
+    b = overlay([res], "y", "x", "t", tmp_path / "b")
+    assert [p.read_bytes() for p in a] == [p.read_bytes() for p in b]
+
+
+def test_printed_table_inconsistencies_are_found():
+    """001 Table 1 prints gamma in [-28; 31] with width 54 for the hybrid at the target, and
+    Sect. 3 says +128% for gamma at homing where the widths 101 / 46 give +119.6%."""
+    from bonered_alg.workspace.comparison_report import _printed_consistency
+
+    found = {c["quantity"]: c["finding"] for c in _printed_consistency()}
+    assert "59" in found["tripod_planar target gamma"]
+    assert "119.6" in found["improvement of gamma (homing)"]
+    assert len(found) == 2
+
+
+def test_comparison_outputs_are_current():
+    from bonered_alg.workspace.comparison_report import comparison_hash, recorded_hash
+    from tests.conftest import ROOT
+
+    assert recorded_hash(ROOT) == comparison_hash()
+
+
+def test_000_table2_tripod_ranges_reproduced_within_one_grid_step():
+    """000 Table 2, hybrid mechanism: Delta z = 75 mm, Delta alpha = 37 deg, Delta beta =
+    22 deg.  Read at x = y = gamma = 0 (the paper does not say; the tripod's strokes and
+    joint ranges, which bound this workspace, are all in Table 1)."""
+    from bonered_alg.generated import planar_tripod as m
+
+    setup = br.table2_setups()[0]
+    res = scan("planar_tripod", br.abz_grid(m.POSE, setup.height), workers=2)
+    steps = {a.name: a.step for a in res.grid.axes}
+    assert abs(res.extent("z") - 75.0) <= steps["z"]
+    assert abs(math.degrees(res.extent("alpha")) - 37.0) <= math.degrees(steps["alpha"])
+    assert abs(math.degrees(res.extent("beta")) - 22.0) <= math.degrees(steps["beta"])
+
+
+def test_stepwise_path_moves_one_group_of_coordinates_per_step():
+    from bonered_alg.workspace.trajectory import stepwise_path
+
+    t, p = stepwise_path([0, 0, 210, 0, 0, 0], [{5: -0.3}, {0: -8.8, 2: 250.0}], 11)
+    assert t.shape == (21,) and t[0] == 0 and t[-1] == 2
+    assert np.allclose(p[10], [0, 0, 210, 0, 0, -0.3]) and np.allclose(p[-1],
+                                                                      [-8.8, 0, 250, 0, 0, -0.3])
+    assert np.allclose(p[:11, :5], [0, 0, 210, 0, 0])  # step 1 changes gamma only
+    assert np.allclose(p[10:, 5], -0.3)  # step 2 keeps it
+
+
+def test_path_velocities_and_margins_match_the_jacobian_and_independent_lengths():
+    """Along the 001 Sect. 4.2 path (Stewart): dq/dt from the samples equals J dX/dt inside
+    each step, and the stroke margin is min(q - 160, 320 - q) of the independent model."""
+    from bonered_alg.generated import stewart as st
+
+    paper, runs = br.trajectory_001(samples_per_step=81)
+    r = runs["stewart"]
+    q_ind = np.array([ind_st.ik(p) for p in r.poses])
+    assert np.allclose(r.q, q_ind, atol=1e-9)  # limits off: every sample has its lengths
+    assert np.allclose(r.stroke_margin, np.min(np.minimum(q_ind - 160, 320 - q_ind), axis=1),
+                       atol=1e-9)
+    J = st.jacobian(r.poses, limits=False)
+    interior = [i for i in range(1, len(r.t) - 1) if np.floor(r.t[i - 1]) == np.floor(r.t[i + 1])]
+    for i in interior[::7]:
+        xdot = (r.poses[i + 1] - r.poses[i - 1]) / (r.t[i + 1] - r.t[i - 1])
+        assert np.allclose(r.qdot[i], J[i] @ xdot, rtol=1e-3, atol=1e-2)
+
+
+def test_001_path_end_needs_a_raised_planar_stage_independent_model():
+    """The finding of the comparison report: with d = 0 the last pose of the 001 path needs a
+    tripod stroke beyond 320 mm, with d = 40 mm all strokes are in range (independent
+    model, tests/independent_tripod_planar.py)."""
+    from bonered_alg.generated import tripod_planar as tp
+
+    _, paper = br.path_001()
+    for d, inside in ((0.0, False), (40.0, True)):
+        pose = tp.pose_from_paper_coordinates(paper[-1], d=d)
+        q, res = ind_tp.joints(pose, d=d)
+        assert res < 1e-9
+        in_range = bool(np.all((q[:3] >= 160) & (q[:3] <= 320)) and np.all((q[3:] >= 120)
+                        & (q[3:] <= 325)))
+        assert in_range is inside, (d, q)
+
+
+def test_planar_singularity_splits_the_gamma_range_at_homing():
+    """The planar stage's input singularity gamma_p = -60 deg (001 eq. 52-53 corrected, see
+    derivations/tripod_planar.tex) separates reachable poses at the homing position: the
+    sign of det_Ji_C flips there and nowhere else on the line."""
+    from bonered_alg.workspace.singular_loci import crossings, polynomial_signs, signs_on_reachable
+
+    g = Grid(POSE, (Axis.from_user("gamma", -80, -40, 1),),
+             {"x": 0.0, "y": 0.0, "z": 210.0, "alpha": 0.0, "beta": 0.0})
+    res = scan("tripod_planar", g, workers=1)
+    signs = polynomial_signs(res)
+    s = signs["det_Ji_C"]
+    flips = np.nonzero(s[:-1] * s[1:] <= 0)[0]
+    gam = np.degrees(g.axes[0].values())
+    assert len(flips) in (1, 2) and all(abs(gam[i] + 60) <= 1.0 for i in flips)
+    assert not res.mask[np.argmin(np.abs(gam + 60))]  # the singular sample itself: excluded
+    both = signs_on_reachable(res, signs)["det_Ji_C"]
+    assert both["positive"] > 0 and both["negative"] > 0
+    assert crossings(res, signs)["det_Ji_C"] == 0  # no reachable pair straddles it
