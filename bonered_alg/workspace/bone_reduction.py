@@ -357,3 +357,57 @@ def singularities_001(workers: int | None = None) -> tuple[list[dict], dict]:
         res = scan("tripod_planar", user_grid(module.POSE, axes, fixed), workers=workers)
         slices[name] = (res, polynomial_signs(res))
     return rows, slices
+
+
+# ------------------------------------------------------- 000 eq. 43-44 and Stewart
+PATH_000_SAMPLES = 361
+
+
+def paths_000() -> dict[str, dict]:
+    """000 eq. (43) and (44) (t in [0, 2 pi]) for ``planar_tripod`` (z about its mid-stroke
+    height, as in its report) and for ``stewart`` with 000 Table 1 (z about its own
+    mid-stroke height): can each follow them within its strokes and joint ranges?"""
+    from ..mechanisms.planar_tripod import Z_HOME, trajectory_eq43, trajectory_eq44
+    from .trajectory import follow
+
+    t = np.linspace(0.0, 2 * np.pi, PATH_000_SAMPLES)
+    setups = table2_setups()
+    h_stewart = next(s.height for s in setups if s.mechanism == "stewart")
+    out = {}
+    for label, traj in (("eq43", trajectory_eq43), ("eq44", trajectory_eq44)):
+        pose, _ = traj(t)
+        shifted = pose.copy()
+        shifted[:, 2] += h_stewart - Z_HOME
+        out[label] = {"planar_tripod": follow("planar_tripod", t, pose),
+                      "stewart": follow("stewart", t, shifted, STEWART_000,
+                                        **STEWART_000_PARAMS)}
+    return out
+
+
+# ------------------------------------------------------ 001 Figs. 9-10 and Sect. 3
+LINEAR_001 = {"stewart": {"x": 155.0, "y": 150.0, "z": 165.0},  # 001 Sect. 3 text
+              "tripod_planar": {"x": 197.0, "y": 194.0}}
+FIG9_AXES = dict(x=(-160.0, 160.0, 4.0), y=(-160.0, 160.0, 4.0), z=(120.0, 380.0, 4.0))
+FIG10_AXES = dict(alpha=(-40.0, 40.0, 1.0), beta=(-40.0, 40.0, 1.0), gamma=(-90.0, 90.0, 2.0))
+
+
+def figures_001(workers: int | None = None) -> tuple[list[dict], dict]:
+    """001 Fig. 9 (the (x, y, z) workspace, angles 0) and Fig. 10 (the angular workspace
+    at the homing position and at the target) for both mechanisms, and the linear ranges
+    quoted in 001 Sect. 3 (extents of the Fig. 9 workspace)."""
+    rows, scans = [], {}
+    for mech in ("tripod_planar", "stewart"):
+        names = load_module(mech).POSE
+        res = scan(mech, user_grid(names, FIG9_AXES, dict(alpha=0.0, beta=0.0, gamma=0.0)),
+                   workers=workers)
+        scans[f"{mech}/xyz"] = res
+        for c, printed in LINEAR_001[mech].items():
+            step = next(a.step for a in res.grid.axes if a.name == c)
+            rows.append({"ref": "001 Sect. 3", "mechanism": mech, "coordinate": c,
+                         "paper_mm": printed, "ours_mm": round(res.extent(c), 3),
+                         "grid_step_mm": step})
+        for where, pos in (("homing", HOMING), ("target", TARGET)):
+            scans[f"{mech}/abg_{where}"] = scan(
+                mech, user_grid(names, FIG10_AXES, dict(zip(("x", "y", "z"), pos))),
+                workers=workers)
+    return rows, scans

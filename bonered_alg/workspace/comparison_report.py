@@ -199,12 +199,22 @@ def compute(workers: int | None = None) -> tuple[dict, dict]:
     t2_rows, scans = br.table2_000(workers)
     traj, scans["path_001"] = _trajectory()
     sing_rows, scans["singular_slices"] = br.singularities_001(workers)
+    linear_rows, fig_scans = br.figures_001(workers)
+    scans.update({f"001/{k}": v for k, v in fig_scans.items()})
+    paths = br.paths_000()
     data = {"comparison_hash": comparison_hash(),
             "generated": {n: load_module(n).DERIVATION_HASH for n in MECHANISMS},
             "table1_001": t1, "layout_study_001_table1_stewart": layout,
             "table2_000": _table2_rows(t2_rows), "printed_consistency": _printed_consistency(),
             "trajectory_001": traj,
             "singularities_001": {"grids": sing_rows, "claim": _singularity_claim(sing_rows)},
+            "linear_ranges_001": [{**r, "explanation": (
+                "within one grid step" if abs(r["ours_mm"] - r["paper_mm"]) <= r["grid_step_mm"]
+                else f"differs by {abs(r['ours_mm'] - r['paper_mm']):.0f} mm (grid step "
+                     f"{r['grid_step_mm']:g}); set-up not fully given: "
+                     + SETUP_GAPS[r["mechanism"]])} for r in linear_rows],
+            "paths_000": {label: {m: _path_summary(r) for m, r in runs.items()}
+                          for label, runs in paths.items()},
             "setup": {"table2_000": {"xyg_axes": br.XY_AXES, "abz_axes_relative_z": br.ABZ_AXES,
                                      "stewart_limits": {k: list(v) for k, v in
                                                         br.STEWART_000.limits.items()},
@@ -276,6 +286,35 @@ def _tex_trajectory(tr: dict) -> list[str]:
                "(leg against platform normal)." if not ds["feasible_with_spherical_range_d_mm"]
                else "with the spherical range as well for $d$ in "
                f"{ds['feasible_with_spherical_range_d_mm']}.")]
+    return out
+
+
+def _tex_linear(rows: list[dict]) -> list[str]:
+    out = [r"\subsection*{001 Sect. 3: linear ranges (Fig. 9, angles 0)}",
+           r"\begin{longtable}{llrrr}\toprule",
+           r"mechanism & range & paper (mm) & ours (mm) & grid step (mm) \\ \midrule"]
+    for r in rows:
+        out.append(f"{_tex_escape(r['mechanism'])} & $\\Delta {r['coordinate']}$ & "
+                   f"{r['paper_mm']:g} & {r['ours_mm']:g} & {r['grid_step_mm']:g} \\\\")
+    out.append(r"\bottomrule\end{longtable}")
+    return out
+
+
+def _tex_paths_000(paths: dict) -> list[str]:
+    out = [r"\subsection*{000 eq. 43-44: can each mechanism follow the test paths?}",
+           "The paths of 000 eq. (43) and (44) over $t \\in [0, 2\\pi]$ (361 samples), z "
+           "about each mechanism's mid-stroke height (the Stewart platform with 000 "
+           "Table 1).",
+           r"\begin{longtable}{llrrrr}\toprule",
+           r"path & mechanism & follows & samples outside & min stroke margin (mm) & "
+           r"min joint margin (deg) \\ \midrule"]
+    for label, runs in paths.items():
+        for mech, v in runs.items():
+            out.append(f"eq. {label[2:]} & {_tex_escape(mech)} & "
+                       f"{'yes' if v['feasible'] else 'no'} & {v['samples_outside']} of "
+                       f"{v['samples']} & {v['min_stroke_margin_mm']} & "
+                       f"{v['min_passive_margin_deg']} \\\\")
+    out.append(r"\bottomrule\end{longtable}")
     return out
 
 
@@ -389,6 +428,8 @@ def _tex(data: dict, figures: list[str]) -> str:
         out.append(f"\\item {_tex_escape(c['ref'])} {_tex_escape(c['quantity'])}: printed "
                    f"{_tex_escape(c['printed'])}; {_tex_escape(c['finding'])}.")
     out.append(r"\end{itemize}")
+    out += _tex_linear(data["linear_ranges_001"])
+    out += _tex_paths_000(data["paths_000"])
     out += _tex_trajectory(data["trajectory_001"])
     out += _tex_singularities(data["singularities_001"])
     for f in figures:
@@ -414,6 +455,20 @@ def write(root: Path, workers: int | None = None, force: bool = False) -> list[P
         res = [scans[f"planar_tripod/{kind}"], scans[f"stewart/{kind}"]]
         written += overlay(res, a, b, title, stem)
         figures.append(stem.name + ".png")  # the PDFs are build products (.gitignore)
+    for kind, (a, b), title in (("xyz", ("y", "x"), "(x, y) over z, 001 Fig. 9"),
+                                ("xyz", ("z", "x"), "(x, z) over y, 001 Fig. 9"),
+                                ("abg_homing", ("beta", "alpha"),
+                                 "(alpha, beta) over gamma at homing, 001 Fig. 10a"),
+                                ("abg_homing", ("gamma", "alpha"),
+                                 "(alpha, gamma) over beta at homing, 001 Fig. 10a"),
+                                ("abg_target", ("beta", "alpha"),
+                                 "(alpha, beta) over gamma at the target, 001 Fig. 10b"),
+                                ("abg_target", ("gamma", "alpha"),
+                                 "(alpha, gamma) over beta at the target, 001 Fig. 10b")):
+        stem = ddir / f"bone_reduction_001_{kind}_{a}_{b}"
+        res = [scans[f"001/tripod_planar/{kind}"], scans[f"001/stewart/{kind}"]]
+        written += overlay(res, a, b, title, stem)
+        figures.append(stem.name + ".png")
     for name, (res, signs) in scans["singular_slices"].items():
         stem = ddir / f"bone_reduction_001_singular_{name}"
         written += singular_slice(res, signs, f"tripod_planar: singularity loci, {name} slice "
