@@ -58,21 +58,29 @@ def _abs(e: sp.Expr) -> sp.Expr:
 
 
 def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
-                         joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol]) -> list:
+                         joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol],
+                         sub: dict) -> list:
     """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21).
 
     Generator ``k`` involves only joints solved at steps ``<= k``, so ``dG/dq`` in the solve
     order is lower triangular: ``dq_k/dX = -(dg_k/dX + sum_{j<k} dg_k/dq_j dq_j/dX) / d_k``
-    with the pivot ``d_k = dg_k/dq_k``; ``det Ji = prod d_k``.
+    with the pivot ``d_k = dg_k/dq_k``; ``det Ji = prod d_k``.  The generators are written in
+    the Study coordinates ``sub`` maps to the pose, and ``dg/dX`` is taken by the chain rule,
+    ``sum_i dg/ds_i ds_i/dX``: differentiating the substituted generator instead multiplies
+    out the pose map into every partial (the Stewart platform's kernel was 4x larger).
     """
+    study = list(sub)
+    ds = [[sp.diff(sub[s], x) for x in pose] for s in study]
     rows: dict[sp.Symbol, list[sp.Expr]] = {}
     pivots, scales = [], []
     for st, g in zip(steps, gens):
-        d = sp.diff(g, st.joint)
-        dgx = [sp.diff(g, x) for x in pose]
+        d = sp.diff(g, st.joint).subs(sub)
+        dgs = [sp.diff(g, s).subs(sub) for s in study]
+        dgx = [sp.Add(*[a * ds[i][m] for i, a in enumerate(dgs) if a != 0 and ds[i][m] != 0])
+               for m in range(len(pose))]
         row = []
         for m in range(len(pose)):
-            acc = dgx[m] + sum(sp.diff(g, prev.joint) * rows[prev.joint][m]
+            acc = dgx[m] + sum(sp.diff(g, prev.joint).subs(sub) * rows[prev.joint][m]
                                for prev in steps[: steps.index(st)])
             row.append(-acc / d)
         rows[st.joint] = row
@@ -199,7 +207,7 @@ def write_ik_module(spec: IKModuleSpec) -> str:
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
     jo = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.pose))
     jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
-    tri = _triangular_jacobian(spec.steps, g_pose, spec.joints, spec.pose)
+    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, sub)
     # pivots of linear steps that can vanish (a constant pivot never does)
     linear = [k for k, st in enumerate(spec.steps)
               if st.degree == 1 and not sp.diff(gens[k], st.joint).is_number]
