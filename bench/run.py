@@ -323,12 +323,90 @@ def tripod_planar_benchmarks(n):
     return out
 
 
+WORKSPACE_MEMORY_SCRIPT = """
+import json, resource, sys, time
+from bonered_alg.workspace.grid import Axis, Grid
+from bonered_alg.workspace.scan import scan
+from bonered_alg.generated import tripod_planar as t
+n = int(sys.argv[1])
+g = Grid(t.POSE, (Axis("x", -150.0, 150.0, n), Axis("y", -150.0, 150.0, n),
+                  Axis("gamma", -1.5, 1.5, n)), {"z": 240.0, "alpha": 0.0, "beta": 0.1})
+t0 = time.perf_counter()
+res = scan("tripod_planar", g, workers=2)
+dt = time.perf_counter() - t0
+# VmHWM, not ru_maxrss: Linux keeps ru_maxrss across fork + exec, so a process started
+# from the (large) benchmark process would report the benchmark's own peak
+hwm = next(int(line.split()[1]) for line in open("/proc/self/status")
+           if line.startswith("VmHWM:"))
+print(json.dumps({"samples": g.size, "reachable": res.count, "seconds": dt,
+                  "samples_per_s": g.size / dt, "mask_bytes": int(res.mask.size / 8),
+                  "peak_rss_parent_mb": hwm / 1024,
+                  "peak_rss_largest_worker_mb":
+                      resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}))
+"""
+
+
+def workspace_benchmarks(n_side=160):
+    """Full workspace test (IK + strokes + passive joint ranges) per mechanism on one and on
+    both cores (grid of n_side^3 samples), and the memory of a 10^8-sample scan (run in a
+    fresh process, so the peak RSS is the scan's own)."""
+    from bonered_alg.workspace.grid import Axis, Grid
+    from bonered_alg.workspace.scan import scan
+
+    out = {}
+    for name, z in (("planar_tripod", 212.5), ("tripod_planar", 240.0), ("stewart", 220.0)):
+        mod = __import__(f"bonered_alg.generated.{name}", fromlist=["POSE"])
+        g = Grid(mod.POSE, (Axis("x", -100.0, 100.0, n_side), Axis("y", -100.0, 100.0, n_side),
+                            Axis("gamma", -1.0, 1.0, n_side)),
+                 {"z": z, "alpha": 0.05, "beta": -0.05})
+        rates = {}
+        for workers in (1, 2):
+            times = []
+            for _ in range(3):
+                t0 = time.perf_counter()
+                res = scan(name, g, workers=workers)
+                times.append(time.perf_counter() - t0)
+            rates[workers] = g.size / statistics.median(times)
+        out[name] = {"samples": g.size, "reachable": res.count,
+                     "samples_per_s_1_core": rates[1], "samples_per_s_2_cores": rates[2],
+                     "speedup_2_cores": rates[2] / rates[1]}
+        print(name, out[name], flush=True)
+    from bonered_alg.generated import stewart as st
+
+    rng = np.random.default_rng(11)
+    poses = np.column_stack([rng.uniform(-40, 40, 200_000), rng.uniform(-40, 40, 200_000),
+                             rng.uniform(190, 250, 200_000),
+                             *(rng.uniform(-0.2, 0.2, (3, 200_000)))])
+    out["stewart_functions"] = {
+        "poses": len(poses), "operation_count": st.OPERATION_COUNT,
+        "ik_us_per_pose": median_time(lambda: st.ik(poses), 3) / len(poses) * 1e6,
+        "ik_and_limits_us_per_pose": median_time(lambda: st.ik_and_status(poses), 3)
+        / len(poses) * 1e6,
+        "jacobian_us_per_pose": median_time(lambda: st.jacobian(poses[:20_000]), 3)
+        / 20_000 * 1e6}
+    print(out["stewart_functions"], flush=True)
+    side = 465  # 465^3 = 1.005e8 samples
+    run = subprocess.run([sys.executable, "-c", WORKSPACE_MEMORY_SCRIPT, str(side)],
+                         capture_output=True, text=True, cwd=ROOT, check=True)
+    out["scan_1e8_tripod_planar"] = json.loads(run.stdout.strip().splitlines()[-1])
+    print(out["scan_1e8_tripod_planar"], flush=True)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
     ap.add_argument("--poses", type=int, default=1_000_000)
     ap.add_argument("--sympy-budget", type=float, default=60.0)
+    ap.add_argument("--only", choices=["workspace"], default=None,
+                    help="re-run one section and merge it into the existing --out file")
     args = ap.parse_args()
+    if args.only == "workspace":
+        results = json.loads(args.out.read_text())
+        results["workspace"] = workspace_benchmarks()
+        args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
+        print(f"wrote {args.out} (workspace section)")
+        return
     derivation = derive("pro_hep_lct")
     results = {
         "machine": {"python": platform.python_version(), "numpy": np.__version__,
@@ -340,6 +418,7 @@ def main():
         "throughput": throughput_benchmarks(args.poses, derivation),
         "planar_tripod": planar_tripod_benchmarks(args.poses),
         "tripod_planar": tripod_planar_benchmarks(args.poses),
+        "workspace": workspace_benchmarks(),
     }
     args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
     print(f"wrote {args.out}")

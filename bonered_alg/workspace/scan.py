@@ -170,6 +170,8 @@ def scan(mechanism: str, grid: Grid, criteria: Criteria = DEFAULT_CRITERIA, *,
     ``dask.distributed.Client``, or ``"local"``; ``keep_mask``: keep the reachable mask
     (default: when the grid has at most 2e8 samples); ``progress(done, total)`` is called
     after each chunk; ``params``: geometric parameters passed to the generated functions.
+    Local workers are spawned processes: a script that scans with ``workers > 1`` needs the
+    usual ``if __name__ == "__main__":`` guard.
     """
     module = load_module(mechanism)
     criteria.check(module)
