@@ -32,7 +32,7 @@ def _workspace_parser(sub) -> None:
     w.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
     w.add_argument("--dask", default=None, metavar="local|ADDRESS",
                    help="run the chunks on a dask cluster: 'local' or a scheduler address")
-    w.add_argument("--chunk", type=int, default=1 << 16, help="samples per chunk")
+    w.add_argument("--chunk", type=int, default=1 << 13, help="samples per chunk")
     w.add_argument("--out", type=Path, default=Path("workspace_out"), help="output folder")
     w.add_argument("--no-progress", action="store_true", help="no progress bar")
 
