@@ -296,3 +296,17 @@ def test_planar_singularity_splits_the_gamma_range_at_homing():
     both = signs_on_reachable(res, signs)["det_Ji_C"]
     assert both["positive"] > 0 and both["negative"] > 0
     assert crossings(res, signs)["det_Ji_C"] == 0  # no reachable pair straddles it
+
+
+def test_workspace_command_on_a_planar_mechanism_with_other_pose_names(tmp_path):
+    """004's pose is (Xu, Yu, Xd, Yd) in mm and its geometry has no published values: the
+    same command scans it with --param (tests/independent_pro_hep_lct.py geometry)."""
+    from tests.independent_pro_hep_lct import GEOMETRY
+
+    params = [f"--param={k}={v}" for k, v in GEOMETRY.items()]
+    rc = main(["workspace", "pro_hep_lct", "--axis", "Xu=200:400:10", "--axis", "Yu=100:300:10",
+               "--fix", "Xd=200", "--fix", "Yd=150", *params, "--workers", "1",
+               "--no-progress", "--out", str(tmp_path)])
+    assert rc == 0
+    summary = (tmp_path / "pro_hep_lct_summary.csv").read_text()
+    assert "Xu_range" in summary and (tmp_path / "pro_hep_lct_Xu_Yu.png").is_file()
