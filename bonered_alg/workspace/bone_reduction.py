@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .grid import Axis, Grid
+from .grid import Axis, Grid, fixed_from_user
 from .membership import DEFAULT_CRITERIA, Criteria, load_module
 from .ranges import coordinate_range
 from .scan import ScanResult, scan
@@ -125,15 +125,15 @@ def layout_study() -> list[dict]:
             got = angular_ranges("stewart", pos, ta=t, tb=t)
             out.append({"tan_half_phi": t, "phi_deg": round(2 * math.degrees(math.atan(t)), 4),
                         "position": where,
-                        **{f"{k}_range_deg": [_rounded(v[0]), _rounded(v[1])]
+                        **{f"{k}_range_deg": [rounded(v[0]), rounded(v[1])]
                            for k, v in got.items()}})
     return out
 
 
-def _rounded(v: float, nd: int = 2) -> float | None:
-    """Rounded for the written tables; None (JSON null) for NaN, i.e. the reference pose
-    itself outside the workspace."""
-    return round(v, nd) if math.isfinite(v) else None
+def rounded(v: float | None, nd: int = 2) -> float | None:
+    """Rounded for the written tables; None (JSON null) for None or NaN, e.g. the reference
+    pose itself outside the workspace."""
+    return round(v, nd) if v is not None and math.isfinite(v) else None
 
 
 # ------------------------------------------------------------------ 000 Table 2
@@ -186,9 +186,13 @@ XY_AXES = dict(x=(-160.0, 160.0, 2.0), y=(-160.0, 160.0, 2.0), gamma=(-90.0, 90.
 ABZ_AXES = dict(alpha=(-40.0, 40.0, 0.5), beta=(-40.0, 40.0, 0.5), z=(-80.0, 80.0, 1.0))
 
 
-def xyg_grid(pose_names, height: float, axes=XY_AXES) -> Grid:
+def user_grid(pose_names, axes: dict, fixed: dict) -> Grid:
     return Grid(tuple(pose_names), tuple(Axis.from_user(k, *v) for k, v in axes.items()),
-                {"z": height, "alpha": 0.0, "beta": 0.0})
+                fixed_from_user(pose_names, fixed))
+
+
+def xyg_grid(pose_names, height: float, axes=XY_AXES) -> Grid:
+    return user_grid(pose_names, axes, {"z": height, "alpha": 0.0, "beta": 0.0})
 
 
 def abz_grid(pose_names, height: float, axes=ABZ_AXES) -> Grid:
@@ -309,9 +313,9 @@ def d_study_001(samples_per_step: int = PATH_SAMPLES) -> list[dict]:
         strokes = follow("tripod_planar", t, poses, STROKES_ONLY, d=d)
         full = follow("tripod_planar", t, poses, d=d)
         out.append({"d_mm": d, "strokes_only_feasible": strokes.feasible,
-                    "min_stroke_margin_mm": _rounded(float(np.nanmin(strokes.stroke_margin))),
+                    "min_stroke_margin_mm": rounded(float(np.nanmin(strokes.stroke_margin))),
                     "feasible_with_spherical_range": full.feasible,
-                    "min_spherical_margin_deg": _rounded(math.degrees(float(
+                    "min_spherical_margin_deg": rounded(math.degrees(float(
                         np.nanmin(full.passive_margin))))})
     return out
 
@@ -329,13 +333,6 @@ SING_SLICES_001 = {  # 2-D slices for the plots
     "x_y": (dict(x=(-200.0, 200.0, 2.0), y=(-200.0, 200.0, 2.0)),
             dict(z=HOMING[2], alpha=0.0, beta=0.0, gamma=0.0)),
 }
-
-
-def user_grid(pose_names, axes: dict, fixed: dict) -> Grid:
-    from .grid import fixed_from_user
-
-    return Grid(tuple(pose_names), tuple(Axis.from_user(k, *v) for k, v in axes.items()),
-                fixed_from_user(pose_names, fixed))
 
 
 def singularities_001(workers: int | None = None) -> tuple[list[dict], dict]:

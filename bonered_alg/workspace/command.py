@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ..fileio import atomic_write_text
-from .grid import ANGLES, Axis, Grid, fixed_from_user, user_value
+from .grid import ANGLES, Axis, Grid, fixed_from_user, user_unit, user_value
 from .membership import Criteria, load_module
 from .plots import overlay
 from .scan import ScanResult, scan
@@ -88,7 +88,7 @@ def summary_csv(res: ScanResult, statuses: dict[int, str]) -> str:
     w.writerow(["grid", res.grid.describe(), ""])
     w.writerow(["samples", res.samples, ""])
     w.writerow(["reachable", res.count, ""])
-    units = [("deg" if a.name in ANGLES else "mm") for a in res.grid.axes]
+    units = [user_unit(a.name) for a in res.grid.axes]
     w.writerow(["volume", f"{res.volume:.6g}", "*".join(
         "mm" if a.name not in ANGLES else "rad" for a in res.grid.axes if a.n > 1)])
     for a, unit in zip(res.grid.axes, units):
@@ -108,7 +108,7 @@ def points_csv(res: ScanResult) -> str | None:
         return None
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow([f"{a.name} ({'deg' if a.name in ANGLES else 'mm'})" for a in res.grid.axes])
+    w.writerow([f"{a.name} ({user_unit(a.name)})" for a in res.grid.axes])
     idx = np.nonzero(res.mask.ravel())[0]
     for start in range(0, idx.size, 1 << 16):
         sub = np.unravel_index(idx[start:start + (1 << 16)], res.grid.shape)
@@ -153,7 +153,7 @@ def workspace(args) -> int:
           f"({res.rate:.3g} samples/s)")
     for a in axes:
         lo, hi = res.ranges.get(a.name, (math.nan, math.nan))
-        unit = "deg" if a.name in ANGLES else "mm"
+        unit = user_unit(a.name)
         print(f"  {a.name}: [{user_value(a.name, lo):.4g}, {user_value(a.name, hi):.4g}] {unit}"
               f" (step {user_value(a.name, a.step):.4g})")
     print("wrote " + ", ".join(str(p) for p in written))

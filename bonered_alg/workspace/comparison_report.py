@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..fileio import atomic_write_text
+from ..report.latex_util import tex_escape
 from . import bone_reduction as br
 from .membership import load_module
 from .plots import joint_paths, overlay, singular_slice
@@ -62,10 +63,6 @@ def recorded_hash(root: Path) -> str | None:
         return None
 
 
-def _r(v, nd=2):
-    return None if v is None or (isinstance(v, float) and not math.isfinite(v)) else round(v, nd)
-
-
 def _table1_rows(rows: list[br.RangeRow]) -> list[dict]:
     out = []
     for r in rows:
@@ -77,8 +74,9 @@ def _table1_rows(rows: list[br.RangeRow]) -> list[dict]:
             "coordinate": r.coordinate, "unit": "deg",
             "paper_min": lo, "paper_max": hi, "paper_width": width,
             "paper_width_consistent": abs((hi - lo) - width) < 1e-9,
-            "ours_min": _r(r.ours[0]), "ours_max": _r(r.ours[1]), "ours_width": _r(ours_w),
-            "max_bound_difference": _r(diff), "resolution": r.resolution,
+            "ours_min": br.rounded(r.ours[0]), "ours_max": br.rounded(r.ours[1]),
+            "ours_width": br.rounded(ours_w),
+            "max_bound_difference": br.rounded(diff), "resolution": r.resolution,
             "stop_min": r.stops[0], "stop_max": r.stops[1],
             "explanation": ("within 0.5 deg" if diff <= 0.5 else
                             f"differs by {diff:.1f} deg; our range stops at "
@@ -92,7 +90,7 @@ def _table2_rows(rows: list[dict]) -> list[dict]:
     out = []
     for r in rows:
         diff = abs(r["ours"] - r["paper"])
-        out.append({**r, "difference": _r(diff, 3),
+        out.append({**r, "difference": br.rounded(diff, 3),
                     "explanation": ("within one grid step" if diff <= r["grid_step"] else
                                     f"differs by {diff:.1f} {r['unit']} (grid step "
                                     f"{r['grid_step']:g}); set-up not fully given: "
@@ -132,11 +130,11 @@ def _path_summary(r) -> dict:
     return {"feasible": r.feasible, "first_failure_step": r.first_failure(),
             "samples_outside": int(bad.sum()), "samples": int(r.code.size),
             "status_codes_outside": sorted({int(c) for c in r.code[bad]}),
-            "min_stroke_margin_mm": br._rounded(float(np.nanmin(r.stroke_margin))),
-            "min_passive_margin_deg": br._rounded(math.degrees(float(
+            "min_stroke_margin_mm": br.rounded(float(np.nanmin(r.stroke_margin))),
+            "min_passive_margin_deg": br.rounded(math.degrees(float(
                 np.nanmin(r.passive_margin)))),
-            "min_singularity_margin": br._rounded(float(np.nanmin(r.singularity_margin)), 4),
-            "max_abs_joint_velocity_mm_per_step": br._rounded(float(np.nanmax(np.abs(
+            "min_singularity_margin": br.rounded(float(np.nanmin(r.singularity_margin)), 4),
+            "max_abs_joint_velocity_mm_per_step": br.rounded(float(np.nanmax(np.abs(
                 r.qdot))), 2)}
 
 
@@ -240,18 +238,13 @@ def _csv(data: dict) -> str:
     return buf.getvalue()
 
 
-def _tex_escape(s: str) -> str:
-    return (str(s).replace("\\", r"\textbackslash{}").replace("_", r"\_").replace("%", r"\%")
-            .replace("#", r"\#").replace("&", r"\&"))
-
-
 SHORT_STOPS = {"STROKE_LIMIT": "stroke", "PASSIVE_JOINT_LIMIT": "joint",
                "INPUT_SINGULAR": "singular", "search bound": "bound"}
 
 
 def _short(stop: str) -> str:
     """A stop reason in a table cell."""
-    return _tex_escape(SHORT_STOPS.get(stop, stop.lower()))
+    return tex_escape(SHORT_STOPS.get(stop, stop.lower()))
 
 
 def _tex_trajectory(tr: dict) -> list[str]:
@@ -268,7 +261,7 @@ def _tex_trajectory(tr: dict) -> list[str]:
            r"run & follows & first failure (step) & min stroke margin (mm) & "
            r"min joint margin (deg) & min sing. margin \\ \midrule"]
     for k, v in rows:
-        out.append(f"{_tex_escape(k)} & {'yes' if v['feasible'] else 'no'} & "
+        out.append(f"{tex_escape(k)} & {'yes' if v['feasible'] else 'no'} & "
                    f"{'' if v['first_failure_step'] is None else v['first_failure_step']} & "
                    f"{v['min_stroke_margin_mm']} & {v['min_passive_margin_deg']} & "
                    f"{v['min_singularity_margin']} \\\\")
@@ -294,7 +287,7 @@ def _tex_linear(rows: list[dict]) -> list[str]:
            r"\begin{longtable}{llrrr}\toprule",
            r"mechanism & range & paper (mm) & ours (mm) & grid step (mm) \\ \midrule"]
     for r in rows:
-        out.append(f"{_tex_escape(r['mechanism'])} & $\\Delta {r['coordinate']}$ & "
+        out.append(f"{tex_escape(r['mechanism'])} & $\\Delta {r['coordinate']}$ & "
                    f"{r['paper_mm']:g} & {r['ours_mm']:g} & {r['grid_step_mm']:g} \\\\")
     out.append(r"\bottomrule\end{longtable}")
     return out
@@ -310,7 +303,7 @@ def _tex_paths_000(paths: dict) -> list[str]:
            r"min joint margin (deg) \\ \midrule"]
     for label, runs in paths.items():
         for mech, v in runs.items():
-            out.append(f"eq. {label[2:]} & {_tex_escape(mech)} & "
+            out.append(f"eq. {label[2:]} & {tex_escape(mech)} & "
                        f"{'yes' if v['feasible'] else 'no'} & {v['samples_outside']} of "
                        f"{v['samples']} & {v['min_stroke_margin_mm']} & "
                        f"{v['min_passive_margin_deg']} \\\\")
@@ -327,13 +320,13 @@ def _tex_singularities(sing: dict) -> list[str]:
            r"\begin{itemize}"]
     for r in sing["grids"]:
         both = [n for n, c in r["signs_on_reachable"].items() if c["positive"] and c["negative"]]
-        out.append(f"\\item {_tex_escape(r['description'])}: {r['reachable']} of "
+        out.append(f"\\item {tex_escape(r['description'])}: {r['reachable']} of "
                    f"{r['samples']} samples reachable; sign changes on the reachable set: "
-                   + (_tex_escape(", ".join(both)) if both else "none") + ".")
+                   + (tex_escape(", ".join(both)) if both else "none") + ".")
     out += [r"\end{itemize}",
-            f"Verdict on the claim ({_tex_escape(claim['ref'])}: "
-            f"{_tex_escape(claim['claim'])}): {_tex_escape(claim['verdict'])}"
-            + (" for " + _tex_escape(", ".join(
+            f"Verdict on the claim ({tex_escape(claim['ref'])}: "
+            f"{tex_escape(claim['claim'])}): {tex_escape(claim['verdict'])}"
+            + (" for " + tex_escape(", ".join(
                 claim["polynomials_changing_sign_on_the_reachable_set"])) + ". The planar "
                "stage's input singularity ($\\gamma_p = -60^\\circ$, where 001 eq. 53 "
                "prints $+60^\\circ$; see the erratum in \\texttt{tripod\\_planar.tex}) "
@@ -376,7 +369,7 @@ def _tex(data: dict, figures: list[str]) -> str:
            r"mechanism & position & angle & paper & ours & paper $\Delta$ & ours $\Delta$ & "
            r"stops at \\ \midrule"]
     for r in data["table1_001"]:
-        out.append(f"{_tex_escape(r['mechanism'])} & {_tex_escape(r['position'])} & "
+        out.append(f"{tex_escape(r['mechanism'])} & {tex_escape(r['position'])} & "
                    f"{r['coordinate']} & [{r['paper_min']:g}; {r['paper_max']:g}] & "
                    f"[{r['ours_min']:.2f}; {r['ours_max']:.2f}] & {r['paper_width']:g} & "
                    f"{r['ours_width']:.2f} & {_short(r['stop_min'])} / "
@@ -393,7 +386,7 @@ def _tex(data: dict, figures: list[str]) -> str:
         label = r["mechanism"] + (f" ({r['variant']})" if r["variant"] else "")
         sym = "\\" + r["coordinate"] if r["coordinate"] in ("alpha", "beta", "gamma") else \
             r["coordinate"]
-        out.append(f"{_tex_escape(label)} & $\\Delta {sym}$ & "
+        out.append(f"{tex_escape(label)} & $\\Delta {sym}$ & "
                    f"{r['unit']} & {r['paper']:g} & {r['ours']:.2f} & {r['grid_step']:g} & "
                    f"{'' if g is None else f'{g:g}'} \\\\")
     out += [r"\bottomrule\end{longtable}",
@@ -405,9 +398,9 @@ def _tex(data: dict, figures: list[str]) -> str:
         if not r["explanation"].startswith("within"):
             pos = r.get("position", f"z = {r.get('height_mm')} mm")
             label = r["mechanism"] + (f" ({r['variant']})" if r.get("variant") else "")
-            out.append(f"\\item {_tex_escape(r['ref'])}, {_tex_escape(label)}, "
-                       f"{_tex_escape(pos)}, {r['coordinate']}: "
-                       f"{_tex_escape(r['explanation'])}.")
+            out.append(f"\\item {tex_escape(r['ref'])}, {tex_escape(label)}, "
+                       f"{tex_escape(pos)}, {r['coordinate']}: "
+                       f"{tex_escape(r['explanation'])}.")
     out += [r"\item[] (none)" if all(r["explanation"].startswith("within") for r in
                                       data["table1_001"] + data["table2_000"]) else "",
             r"\end{itemize}",
@@ -425,8 +418,8 @@ def _tex(data: dict, figures: list[str]) -> str:
             r"\subsection*{Printed numbers that disagree with each other}", r"\begin{itemize}"]
     for c in data["printed_consistency"] or [{"ref": "", "quantity": "none", "printed": "",
                                                "finding": ""}]:
-        out.append(f"\\item {_tex_escape(c['ref'])} {_tex_escape(c['quantity'])}: printed "
-                   f"{_tex_escape(c['printed'])}; {_tex_escape(c['finding'])}.")
+        out.append(f"\\item {tex_escape(c['ref'])} {tex_escape(c['quantity'])}: printed "
+                   f"{tex_escape(c['printed'])}; {tex_escape(c['finding'])}.")
     out.append(r"\end{itemize}")
     out += _tex_linear(data["linear_ranges_001"])
     out += _tex_paths_000(data["paths_000"])

@@ -112,20 +112,21 @@ class Grid:
         return out
 
     def describe(self) -> str:
-        parts = [f"{a.name} in [{_user(a.name, a.lo):g}, {_user(a.name, a.hi):g}] "
-                 f"({a.n} samples, step {_user(a.name, a.step):.4g})" for a in self.axes]
-        parts += [f"{k} = {_user(k, v):g}" for k, v in self.fixed.items()]
+        parts = [f"{a.name} in [{user_value(a.name, a.lo):g}, {user_value(a.name, a.hi):g}] "
+                 f"({a.n} samples, step {user_value(a.name, a.step):.4g})" for a in self.axes]
+        parts += [f"{k} = {user_value(k, v):g}" for k, v in self.fixed.items()]
         return "; ".join(parts) + " (mm, deg)"
 
 
-def _user(name: str, value: float) -> float:
-    """mm stay mm, radians become degrees."""
+def user_value(name: str, value: float) -> float:
+    """User units for tables and plots: mm stay mm, radians become degrees."""
     return math.degrees(value) if name in ANGLES else value
 
 
-def user_value(name: str, value: float) -> float:
-    """Public form of :func:`_user` for tables and plots."""
-    return _user(name, value)
+def user_unit(name: str) -> str:
+    """Unit of :func:`user_value`: degrees for the Euler angles, mm for every other pose
+    coordinate (the generated modules' lengths, e.g. 004's Xu, Yu)."""
+    return "deg" if name in ANGLES else "mm"
 
 
 def internal_value(name: str, value: float) -> float:

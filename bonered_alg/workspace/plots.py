@@ -15,16 +15,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ..fileio import atomic_write_bytes  # noqa: E402
-from .grid import ANGLES, user_value  # noqa: E402
+from .grid import user_unit, user_value  # noqa: E402
 from .scan import ScanResult  # noqa: E402
 
 COLOURS = {"stewart": "tab:blue"}  # any hybrid mechanism: tab:red
-
-
-def _unit(name: str) -> str:
-    """Axis unit: degrees for the Euler angles, mm for every other pose coordinate (the
-    generated modules' lengths, e.g. 004's Xu, Yu)."""
-    return "deg" if name in ANGLES else "mm"
 
 LABELS = {"alpha": "alpha", "beta": "beta", "gamma": "gamma"}
 
@@ -69,8 +63,8 @@ def overlay(results: Sequence[ScanResult], a: str, b: str, title: str, stem: Pat
                 ax.contour(vb, va, m.astype(float), levels=[0.5], colors=[colour],
                            linewidths=1.2)
             ax.plot([], [], color=colour, label=res.mechanism)
-        ax.set_xlabel(f"{LABELS.get(b, b)} ({_unit(b)})")
-        ax.set_ylabel(f"{LABELS.get(a, a)} ({_unit(a)})")
+        ax.set_xlabel(f"{LABELS.get(b, b)} ({user_unit(b)})")
+        ax.set_ylabel(f"{LABELS.get(a, a)} ({user_unit(a)})")
         ax.set_title(title, fontsize=9)
         ax.legend(loc="upper right", fontsize=8)
         ax.grid(True, lw=0.3)
@@ -123,8 +117,8 @@ def singular_slice(res: ScanResult, signs: dict, title: str, stem: Path) -> list
                            linewidths=1.2)
                 ax.plot([], [], color=colour, label=f"{name} = 0")
                 k += 1
-        ax.set_xlabel(f"{a} ({_unit(a)})")
-        ax.set_ylabel(f"{b} ({_unit(b)})")
+        ax.set_xlabel(f"{a} ({user_unit(a)})")
+        ax.set_ylabel(f"{b} ({user_unit(b)})")
         ax.set_title(title, fontsize=9)
         ax.legend(fontsize=7, loc="upper right")
         ax.grid(True, lw=0.3)
