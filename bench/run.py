@@ -393,19 +393,53 @@ def workspace_benchmarks(n_side=160):
     return out
 
 
+def pro_hep_lct_tool_benchmarks(n=100_000, n_fk=10_000, sympy_budget=120.0):
+    """Issue 5: the mobile platform's ideal G per engine (no cache), tool IK throughput and
+    the whole robot's forward kinematics (16 assembly modes) per configuration."""
+    from bonered_alg.mechanisms import pro_hep_lct as m
+    from bonered_alg.surgical import pro_hep_lct_tool as tool
+
+    out = {"G_derivation": {}}
+    for eng in [SingularEngine()] + [SympyEngine(k) for k in SympyEngine.METHODS]:
+        label = eng.name + (f"_{eng.method}" if hasattr(eng, "method") else "")
+        try:
+            t = median_time(lambda e=eng: m.analyses(None, e, sympy_budget, False), 3
+                            if isinstance(eng, SingularEngine) else 1)
+            out["G_derivation"][label + "_s"] = t
+        except EngineTimeoutError:
+            out["G_derivation"][label + "_s"] = f"> {sympy_budget:g} (time budget exceeded)"
+        print(label, out["G_derivation"][label + "_s"], flush=True)
+    rng = np.random.default_rng(0)
+    dirs = np.column_stack([rng.uniform(-0.4, 0.4, n), rng.uniform(-0.4, 0.4, n), np.ones(n)])
+    origin = np.column_stack([rng.uniform(260, 300, n), rng.uniform(160, 200, n),
+                              rng.uniform(-150, -110, n)])
+    poses = tool.tool_pose(origin, dirs)
+    t_ik = median_time(lambda: tool.tool_ik(poses, gen, mode=m.TABLE5_MODE, limits=False), 5)
+    joints, status = tool.tool_ik(poses, gen, mode=m.TABLE5_MODE, limits=False)
+    ok = joints[status == 0][:n_fk]
+    t_fk = median_time(lambda: tool.tool_fk(ok, gen), 3)
+    out.update({"tool_ik_poses_per_s": n / t_ik, "tool_ik_us_per_pose": t_ik / n * 1e6,
+                "tool_ik_reachable_fraction": float(np.mean(status == 0)),
+                "tool_fk_configurations": len(ok),
+                "tool_fk_us_per_configuration_all_16_modes": t_fk / len(ok) * 1e6})
+    print(out, flush=True)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
     ap.add_argument("--poses", type=int, default=1_000_000)
     ap.add_argument("--sympy-budget", type=float, default=60.0)
-    ap.add_argument("--only", choices=["workspace"], default=None,
+    ap.add_argument("--only", choices=["workspace", "pro_hep_lct_tool"], default=None,
                     help="re-run one section and merge it into the existing --out file")
     args = ap.parse_args()
-    if args.only == "workspace":
+    if args.only:
         results = json.loads(args.out.read_text())
-        results["workspace"] = workspace_benchmarks()
+        results[args.only] = {"workspace": workspace_benchmarks,
+                              "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks}[args.only]()
         args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
-        print(f"wrote {args.out} (workspace section)")
+        print(f"wrote {args.out} ({args.only} section)")
         return
     derivation = derive("pro_hep_lct")
     results = {
@@ -419,6 +453,7 @@ def main():
         "planar_tripod": planar_tripod_benchmarks(args.poses),
         "tripod_planar": tripod_planar_benchmarks(args.poses),
         "workspace": workspace_benchmarks(),
+        "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks(sympy_budget=args.sympy_budget),
     }
     args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
     print(f"wrote {args.out}")
