@@ -201,3 +201,59 @@ def test_rcm_deviation_zero_at_control_points(derivation):
         assert d["at_control_points"] < 1e-9
         assert d["max"] > 1e-3  # between control points the entry point is not kept
         assert norm[::50].max() < 1e-9
+
+
+def test_printed_argument_lists_of_sg3_to_sg6(derivation):
+    """004 eq. (24)-(27) print only argument lists.  The output singularity of the lower
+    mechanism in (t1, w1) (det_Jo_Pd with the pose eliminated) depends on every link: no
+    factor matches sg3's (t1, w1, l1, l3), nor sg4-sg6's lists that omit l4."""
+    facs = derivation.extra["input_space_singularities"]["det_Jo_Pd"]
+    assert facs
+    for _f, syms in facs:
+        names = {str(s) for s in syms}
+        assert {"l2", "l4", "t1", "w1"} <= names
+    got = {v.ref: v.verdict for v in derivation.verification}
+    assert got["004 eq. (24)"] == "confirmed-symbolic"
+    for ref in ("004 eq. (25)", "004 eq. (26)", "004 eq. (27)"):
+        assert got[ref] == "erratum"
+    assert got["004 eq. (36)"] == "confirmed-symbolic"
+
+
+def test_input_space_factor_vanishes_at_parallel_links(derivation, gen):
+    """At a configuration built with l2 parallel to l4 (independent geometry, numpy), one of
+    the input-space factors vanishes and it does not at a generic configuration."""
+    par = gen.PARAMETERS
+    L1, L2, L3, L4, D, LQ = (par[k] for k in ("l1", "l2", "l3", "l4", "d", "lq4d"))
+    # fix q2 (elbow E1); the distal link l2 has direction u, so J1 = E1 + l2 u, Pd = J1 +
+    # (0, d/2), J2 = Pd + (0, d/2); l4 parallel: E2 = J2 - sign l4 u, and E2 must lie at
+    # distance l3 from chain 2's base (0, lq4d): solve for the angle of u
+    from scipy.optimize import brentq
+
+    q2 = -0.3
+    e1 = L1 * np.array([np.cos(q2), np.sin(q2)])
+
+    def gap(ph, sign):
+        uu = np.array([np.cos(ph), np.sin(ph)])
+        e2_ = L1 * np.array([np.cos(q2), np.sin(q2)]) + L2 * uu + [0, D] - sign * L4 * uu
+        return np.hypot(e2_[0], e2_[1] - LQ) - L3
+
+    sols = []
+    for sign in (1, -1):
+        grid = np.linspace(-np.pi, np.pi, 721)
+        vals = [gap(p, sign) for p in grid]
+        for i in range(720):
+            if vals[i] * vals[i + 1] < 0:
+                sols.append((brentq(gap, grid[i], grid[i + 1], args=(sign,)), sign))
+    assert sols
+    ph, sign = sols[0]
+    uu = np.array([np.cos(ph), np.sin(ph)])
+    e2 = e1 + L2 * uu + [0, D] - sign * L4 * uu
+    q3 = np.arctan2(e2[1] - LQ, e2[0])
+    w = np.tan(q3 / 2)
+    t = np.tan(q2 / 2)
+    sub = {m.l1: L1, m.l2: L2, m.l3: L3, m.l4: L4, m.d: D, m.lq4d: LQ}
+    facs = [sp.lambdify([m.t1, m.w1], f.subs(sub)) for f, _ in
+            derivation.extra["input_space_singularities"]["det_Jo_Pd"]]
+    scale = [abs(f(t + 0.05, w - 0.05)) for f in facs]
+    vals = [abs(f(t, w)) for f in facs]
+    assert min(v / s for v, s in zip(vals, scale)) < 1e-6
