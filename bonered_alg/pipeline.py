@@ -9,6 +9,7 @@ derivation hash.
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import json
 import re
@@ -146,25 +147,46 @@ class Derivation:
         return out
 
 
+# package folders that shape only the mechanisms naming them in ``USES_PACKAGES``
+OPTIONAL_PACKAGES = ("surgical",)
+
+
+def declared_packages(module_path: Path) -> set[str]:
+    """The optional package folders a mechanism module names in ``USES_PACKAGES`` (read
+    with ``ast``, without importing the module)."""
+    if not module_path.is_file():
+        return set()
+    for node in ast.parse(module_path.read_text()).body:
+        if isinstance(node, ast.Assign) and any(
+                isinstance(t, ast.Name) and t.id == "USES_PACKAGES" for t in node.targets):
+            return set(ast.literal_eval(node.value))
+    return set()
+
+
 def derivation_hash(name: str, package_dir: Path = PACKAGE_DIR,
                     module_file: str | None = None) -> str:
     """SHA-256 of every source file that shapes ``name``'s outputs (engine excluded).
 
     That is the whole package except the command line, the workspace tool (it reads the
-    generated modules, it does not shape them) and the *other* mechanism modules, so editing
-    one mechanism re-derives only that one.  The engine is excluded on purpose: both
-    engines return the same normalized basis (``tests/test_engines_agree.py``).
+    generated modules, it does not shape them), the *other* mechanism modules, so editing
+    one mechanism re-derives only that one, and the optional packages (``OPTIONAL_PACKAGES``)
+    the mechanism does not name in ``USES_PACKAGES``.  The engine is excluded on purpose:
+    both engines return the same normalized basis (``tests/test_engines_agree.py``).
     ``module_file`` adds a mechanism module that lives outside the package.
     """
     h = hashlib.sha256(f"{GENERATOR}\n".encode())
+    uses = declared_packages(package_dir / "mechanisms" / f"{name}.py")
     if module_file and not Path(module_file).resolve().is_relative_to(package_dir):
         h.update(Path(module_file).read_bytes())
+        uses |= declared_packages(Path(module_file))
     for path in sorted(package_dir.rglob("*.py")):
         rel = path.relative_to(package_dir).as_posix()
         if rel.startswith("mechanisms/") and rel not in ("mechanisms/__init__.py",
                                                           f"mechanisms/{name}.py"):
             continue
         if rel in ("cli.py",) or rel.startswith("workspace/"):
+            continue
+        if any(rel.startswith(f"{p}/") and p not in uses for p in OPTIONAL_PACKAGES):
             continue
         h.update(rel.encode() + b"\0" + path.read_bytes() + b"\0")
     return h.hexdigest()
@@ -405,7 +427,8 @@ def ik_module_source(d: Derivation) -> str:
         fk_note=d.fk_note,
         limits=m.limits(d) if callable(getattr(m, "limits", None)) else (),
         pose_functions=(m.pose_functions(d) if callable(getattr(m, "pose_functions", None))
-                        else ()))
+                        else ()),
+        functions=m.functions(d) if callable(getattr(m, "functions", None)) else ())
     return write_ik_module(spec)
 
 

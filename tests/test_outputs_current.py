@@ -52,9 +52,17 @@ def test_hash_covers_only_the_mechanism_and_the_core(tmp_path):
     (pkg / "mechanisms" / "other.py").write_text("X = 2\n")
     assert derivation_hash("pro_hep_lct", pkg) == h_pro
     assert derivation_hash("other", pkg) != h_other
+    # an optional package shapes only the mechanisms that declare it (USES_PACKAGES)
+    h_other = derivation_hash("other", pkg)
+    (pkg / "surgical" / "manipulation.py").write_text(
+        (pkg / "surgical" / "manipulation.py").read_text() + "\n# changed\n")
+    assert derivation_hash("other", pkg) == h_other
+    assert derivation_hash("pro_hep_lct", pkg) != h_pro
+    h_pro = derivation_hash("pro_hep_lct", pkg)
     (pkg / "algebra" / "convention.py").write_text(
         (pkg / "algebra" / "convention.py").read_text() + "\n# changed\n")
     assert derivation_hash("pro_hep_lct", pkg) != h_pro
+    assert derivation_hash("other", pkg) != h_other
 
 
 def test_missing_engine_leaves_outputs_untouched(tmp_path, monkeypatch):

@@ -123,6 +123,9 @@ def test_platform_fk_satisfies_G(derivation, gen):
         for p, s in zip(pts, plat):
             vals = np.array(g(*p, *s), dtype=float)
             assert np.max(np.abs(vals)) < 1e-9 * 300**3, (mode, p)
+        # the generated residuals of G agree with the symbolic ones
+        res = gen.platform_residuals(np.concatenate([pts, plat], axis=-1))
+        assert np.max(np.abs(res)) < 1e-9 * 300**3
     # the four modes are four different poses
     all_modes = np.stack([tool.platform_from_points(pts, k, gen) for k in range(4)], axis=1)
     for i in range(4):
@@ -257,3 +260,20 @@ def test_input_space_factor_vanishes_at_parallel_links(derivation, gen):
     scale = [abs(f(t + 0.05, w - 0.05)) for f in facs]
     vals = [abs(f(t, w)) for f in facs]
     assert min(v / s for v, s in zip(vals, scale)) < 1e-6
+
+
+def test_platform_velocity_against_finite_differences(gen):
+    """dX/dp from Ji,3 and Jo,3 (004 eq. 21) equals the finite difference of the platform;
+    Jo,3 keeps full rank at a generic and at the tool-vertical configuration."""
+    c = gen.PARAMETERS["c"]
+    for p in ([317.0, 191.0, 233.0, 172.0], [300.0, 180.0, 300.0 - c, 180.0]):
+        p = np.array(p)
+        dx, sigma = tool.platform_velocity(p, 0, gen)
+        assert sigma > 1e-6
+        h = 1e-5
+        for k in range(4):
+            e = np.zeros(4)
+            e[k] = h
+            fd = (tool.platform_from_points(p + e, 0, gen)
+                  - tool.platform_from_points(p - e, 0, gen)) / (2 * h)
+            np.testing.assert_allclose(dx[:, k], fd, atol=1e-7)

@@ -42,6 +42,9 @@ class IKModuleSpec:
     limits: Sequence[tuple] = ()
     # mechanism-specific functions of the pose: (name, output names, expressions, doc)
     pose_functions: Sequence[tuple] = ()
+    # mechanism-specific functions of other inputs: (name, input symbols, output names,
+    # expressions, doc), e.g. the Study point of a platform from the closures' points
+    functions: Sequence[tuple] = ()
     # a 3-RPS closure solved through its eliminant (kinematics.rps_forward.RPSSystem) and the
     # closure's Study coordinates (chart x0 = 1), which come first in the arguments of _fk_pose
     rps: RPSSystem | None = None
@@ -107,6 +110,8 @@ def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
            "limits": [(lim[0], sp.sympify(lim[1]).subs(c), *lim[2:]) for lim in spec.limits],
            "pose_functions": [(f[0], f[1], [sp.sympify(e).subs(c) for e in f[2]], f[3])
                               for f in spec.pose_functions],
+           "functions": [(f[0], f[1], f[2], [sp.sympify(e).subs(c) for e in f[3]], f[4])
+                         for f in spec.functions],
            "pose_to_study": {k: sp.sympify(v).subs(c) for k, v in spec.pose_to_study.items()},
            "study_to_pose": ({k: sp.sympify(v).subs(c) for k, v in spec.study_to_pose.items()}
                              if spec.study_to_pose else None),
@@ -170,6 +175,20 @@ def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symb
             rows.append(f"    (1, {kern.name}, None),")
         solved.append(st.joint)
     return kernels, rows, mode_bits
+
+
+_FUNCTION_HELPER = '''def _function(func, kern, values, names, params):
+    values = numpy.asarray(values, dtype=float)
+    if values.ndim == 0 or values.shape[-1] != len(names):
+        raise ValueError(f"{MECHANISM}.{func}: values must have shape (..., {len(names)}) "
+                         f"with coordinates {names}, got shape {values.shape}")
+    par = _params(func, params)
+    shape = values.shape[:-1]
+    with numpy.errstate(all="ignore"):
+        out = kern(*[values[..., i] for i in range(len(names))], *par)
+    return numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+                        for v in out], axis=-1)
+'''
 
 
 def write_ik_module(spec: IKModuleSpec) -> str:
@@ -239,6 +258,20 @@ def write_ik_module(spec: IKModuleSpec) -> str:
             f'    """{doc} Returns (..., {len(outs)}): {", ".join(outs)}."""',
             f"    return _pose_function({fname!r}, {kern.name}, pose, params)",
         ]
+    for fname, inputs, outs, exprs, doc in spec.functions:
+        kern = kernel(f"_fn_{fname}", [*inputs, *par], list(exprs), doc)
+        kernels.append(kern)
+        names = tuple(str(v) for v in inputs)
+        pf_src += [
+            "",
+            "",
+            f"def {fname}(values, **params):",
+            f'    """{doc} ``values``: (..., {len(names)}) = {", ".join(names)}; returns '
+            f'(..., {len(outs)}): {", ".join(outs)}."""',
+            f"    return _function({fname!r}, {kern.name}, values, {names!r}, params)",
+        ]
+    if spec.functions:
+        pf_src += ["", "", _FUNCTION_HELPER.rstrip("\n")]
     sing_src = []
     for name, expr, meaning in spec.singularities:
         # in the Study coordinates of the pose (computed once by _study), not in the pose:

@@ -39,6 +39,7 @@ from ..chains.joints import Role
 from ..chains.mechanism import Closure, Coupling, Mechanism, Parameter, joint, leg
 
 NAME = "pro_hep_lct"
+USES_PACKAGES = ("surgical",)  # the tool functions shape Table 5, the workspace, the report
 SOURCE = "004_8bdb7fbbbd93924e.txt (Vaida, Pisla et al., Symmetry 11, 1491, 2019), Sect. 2, 3.1-3.2"
 
 R = {"real": True}
@@ -509,6 +510,38 @@ def analyses(deriv, engine, budget_s, use_cache) -> dict:
     return out
 
 
+def functions(deriv) -> list[tuple]:
+    """Generated functions of the mobile platform, from the derived G (004 eq. 17-18):
+    ``platform_dual`` (the dual part y of the platform from its rotation x and Pd, solved
+    from chain 1's four linear generators) and ``platform_residuals`` (every generator of G,
+    zero on the platform's Study point)."""
+    lin = [g for g in deriv.extra["G"] if sp.Poly(g, *PX).total_degree() == 1]
+    sol = sp.solve(lin, PX[4:], dict=True)
+    if len(sol) != 1 or set(sol[0]) != set(PX[4:]):
+        raise ValueError(f"{NAME}: chain 1's linear generators do not determine y")
+    dual = [sp.expand(sol[0][y]) for y in PX[4:]]
+    g = sp.Matrix(deriv.extra["G"])
+    ji = g.jacobian(sp.Matrix([Xu, Yu, Xd, Yd]))
+    jo = g.jacobian(sp.Matrix(PX))
+    rows = len(deriv.extra["G"])
+    return [
+        ("platform_input_jacobian", (Xu, Yu, Xd, Yd, *PX),
+         tuple(f"dg{i + 1}/d{v}" for i in range(rows) for v in ("Xu", "Yu", "Xd", "Yd")),
+         list(ji), "Ji,3 = dG/d(Xu, Yu, Xd, Yd) of the platform ideal (004 eq. 21), row-major "
+         f"({rows} x 4)."),
+        ("platform_output_jacobian", (Xu, Yu, Xd, Yd, *PX),
+         tuple(f"dg{i + 1}/d{v}" for i in range(rows) for v in PX), list(jo),
+         f"Jo,3 = dG/d(x0..y3) of the platform ideal (004 eq. 21), row-major ({rows} x 8)."),
+        ("platform_dual", (*PX[:4], Xd, Yd), tuple(str(y) for y in PX[4:]), dual,
+         "Dual part (y0..y3) of the platform's Study point from its rotation (x0..x3, |x| = 1) "
+         "and Pd = (Xd, Yd): chain 1's linear generators of G (004 eq. 17-18)."),
+        ("platform_residuals", (Xu, Yu, Xd, Yd, *PX),
+         tuple(f"g{k}" for k in range(1, len(deriv.extra["G"]) + 1)), deriv.extra["G"],
+         "Generators of the platform ideal G (004 eq. 18) at (Xu, Yu, Xd, Yd) and a platform "
+         "Study point: all zero on the platform's poses."),
+    ]
+
+
 def _input_space_singularities(deriv, engine, budget_s, use_cache) -> dict:
     """The lower mechanism's singularity polynomials in the inputs (t1, w1), as 004 prints
     sg3-sg6: each factor of det_Jo_Pd and det_Ji_Pd with the pose eliminated against Gd
@@ -758,6 +791,63 @@ def _verify_printed_arguments(deriv) -> list:
     return out
 
 
+def _insertion_direction_verdict(gen):
+    """004 eq. (8)/(10) with P_l = [1:0:0:0:0:0:0:-l/2] for l = 100 mm (along +Z') against
+    Table 5, which needs the insertion towards the patient (-Z')."""
+
+    from ..surgical import pro_hep_lct_tool as tool
+    from ..verification import Verdict
+
+    row = next(r for r in TABLE5 if r[0] == "A 30 deg")
+    printed_n = row[8]
+    n = {}
+    for label, depth in (("+Z' (eq. 8 as printed, l = 100)", -TABLE5_DEPTH),
+                         ("-Z' (towards the patient)", TABLE5_DEPTH)):
+        pose = tool.rcm_path(TABLE5_ENTRY, row[1], [row[2]], depth)[0]
+        n[label] = float(tool.tool_ik(pose, gen, mode=TABLE5_MODE, limits=False)[0][4])
+    plus, minus = n.values()
+    return Verdict(
+        "004 eq. (8), (10) with Table 5", "direction of the 100 mm insertion",
+        "erratum" if abs(plus - printed_n) > 1e-3 and abs(minus - printed_n) < 1e-3
+        else "not-checkable", None,
+        f"eq. (8) inserts along Z' with P_l = [1:0:0:0:0:0:0:-l/2], which moves +l along Z'; "
+        f"at O the tool frame is the base frame (x = [1:0:0:0]), so Z' points away from the "
+        f"patient. Row A 30 deg: with l = 100 along +Z' the redundant joint is n = "
+        f"{plus:.4f}; along -Z' it is n = {minus:.4f}; printed n = {printed_n}. Table 5 uses "
+        "the insertion towards the patient, i.e. l = -100 in eq. (8)'s convention; every row "
+        "is reproduced that way (n = 110/cos(angle) - 10)")
+
+
+def _platform_jacobian_verdict(gen):
+    """004 eq. (21) for the platform: Ji,3 and Jo,3 of G, generated; the smallest singular
+    value of Jo,3 (rows normalized) over random configurations and on the sg7/sg8 loci."""
+    import numpy as np
+
+    from ..surgical import pro_hep_lct_tool as tool
+    from ..verification import Verdict
+
+    rng = np.random.default_rng(21)
+    pts = np.column_stack([rng.uniform(150, 440, 500), rng.uniform(0, 400, 500),
+                           rng.uniform(100, 380, 500), rng.uniform(0, 400, 500)])
+    c = gen.PARAMETERS["c"]
+    loci = {"sg7 (Yd = Yu)": np.array([317.0, 180.0, 233.0, 180.0]),
+            "sg8 (Xd - Xu + c = 0)": np.array([300.0, 191.0, 300.0 - c, 172.0]),
+            "tool vertical (sg7 and sg8)": np.array([300.0, 180.0, 300.0 - c, 180.0])}
+    sig = min(float(np.min(tool.platform_velocity(pts, m_, gen)[1])) for m_ in range(4))
+    at = {k: min(float(tool.platform_velocity(v, m_, gen)[1]) for m_ in range(4))
+          for k, v in loci.items()}
+    return Verdict(
+        "004 eq. (21)", "Ji,3 = dG/d(Xu, Yu, Xd, Yd), Jo,3 = dG/d(x, y) of the mobile platform",
+        "not-checkable", None,
+        "derived from G (generated as platform_input_jacobian, platform_output_jacobian; "
+        "the paper's Jo,3 uses a lex basis G* it does not print). Smallest singular value "
+        "of Jo,3 with normalized rows and columns, all four "
+        f"platform modes: {sig:.3g} over 500 random configurations; "
+        + ", ".join(f"{k}: {v:.3g}" for k, v in at.items())
+        + ": full rank everywhere sampled, so no output singularity of the platform there "
+        "(dX/dp = -pinv(Jo,3) Ji,3 matches finite differences, tests)")
+
+
 def _verify_platform(deriv) -> list:
     """Verdicts for 004 Table 3, eq. (17)-(18), Sect. 3.3 (sg7-sg10), 3.4 and Table 5."""
     import numpy as np
@@ -857,6 +947,8 @@ def _verify_platform(deriv) -> list:
     gen = load_generated(ik_module_source(deriv), NAME)
     ex["table5"] = table5(gen)
     ex["rcm_deviation"] = rcm_deviation(gen)
+    out.append(_platform_jacobian_verdict(gen))
+    out.append(_insertion_direction_verdict(gen))
     ws = ex["workspace"] = workspace(gen)
     step = WORKSPACE_GRID["X"][2]
     dex_x = ws["X"][ws["dexterous"].any(axis=1)]
@@ -1034,7 +1126,10 @@ def report_sections(deriv) -> list[str]:
                        "working modes of the end effector (Sect. 3.4). The whole robot has "
                        "2 (upper) x 2 (lower) x 4 = 16 assembly modes; "
                        "bonered_alg.surgical.pro_hep_lct_tool.tool_fk returns all of them "
-                       "and tool_ik the active joints (t1, w1, q4, q5, n) of a tool pose."),
+                       "and tool_ik the active joints (t1, w1, q4, q5, n) of a tool pose. "
+                       "The generated module carries G as platform_residuals, chain 1's "
+                       "linear generators solved for y as platform_dual, and the Jacobians "
+                       "of eq. (21) as platform_input_jacobian and platform_output_jacobian."),
             r"\section{Tool manipulation (004 eq. 8-12)}",
             tex_escape("Insertion P_ins = P P_l, retraction P = P_ins conj(P_l), RCM "
                        "P_RCM = P P_o P_l and its inverse, and sequences (eq. 12) are the "

@@ -9,9 +9,11 @@ lower universal joint ``Ud = (Xd + c, Yd, 0)`` and the upper one ``Uu = (Xu, Yu,
 * the tool frame is ``P * Tz(-n)``: the redundant insertion ``n`` along -Z', towards the
   patient (004 Table 5, read as explained in ``derivations/pro_hep_lct.tex``).
 
-The relations below are the closed forms of the derived ideal G (``analyses`` in
-``bonered_alg.mechanisms.pro_hep_lct``); ``tests/test_pro_hep_lct_platform.py`` checks every
-solution against G's generators.  Platform modes (004 Sect. 3.4, four for the end effector):
+The rotation of the platform is the closed form of the universal joints (the direction of
+``Uu - Ud``); its dual part comes from the generated ``platform_dual`` (chain 1's linear
+generators of the derived ideal G, ``analyses`` in ``bonered_alg.mechanisms.pro_hep_lct``),
+and ``tests/test_pro_hep_lct_platform.py`` checks every solution against all of G's
+generators (``platform_residuals``).  Platform modes (004 Sect. 3.4, four for the end effector):
 bit 0 flips Z' (tool pointing up instead of down), bit 1 turns the platform by a half-turn
 about Z' (the second solution of the universal joints).
 """
@@ -39,6 +41,11 @@ def _par(gen, params: dict, names) -> list[float]:
     return out
 
 
+def _planar(gen, params: dict) -> dict:
+    """The keyword parameters the generated module knows (it rejects unknown ones)."""
+    return {k: v for k, v in params.items() if k in gen.PARAMETERS}
+
+
 def platform_from_points(points, mode: int = 0, gen=None, **params) -> np.ndarray:
     """Study point of the platform for ``points = (..., 4) = (Xu, Yu, Xd, Yd)``, one mode.
 
@@ -57,6 +64,10 @@ def platform_from_points(points, mode: int = 0, gen=None, **params) -> np.ndarra
         a = (uu - ud) / np.linalg.norm(uu - ud, axis=-1, keepdims=True)
     a = -a if mode & 1 else a
     rot = universal_rotation(a, bool(mode & 2))
+    if hasattr(gen, "platform_dual"):  # the dual part from G's linear generators
+        planar = _planar(gen, params)
+        xd = np.concatenate([rot[..., :4], pts[..., 2:4]], axis=-1)
+        return np.concatenate([rot[..., :4], gen.platform_dual(xd, **planar)], axis=-1)
     origin = ud - dn * a  # a = R e_z after the flip of mode bit 0
     return sn.product(sn.translation(origin), rot)
 
@@ -85,6 +96,28 @@ def tool_pose(point, direction) -> np.ndarray:
     d = np.asarray(direction, dtype=float)
     a = d / np.linalg.norm(d, axis=-1, keepdims=True)
     return sn.product(sn.translation(np.asarray(point, dtype=float)), universal_rotation(a))
+
+
+def platform_velocity(points, mode: int = 0, gen=None, **params):
+    """``(dX/dp, sigma)``: the platform's Study-point velocity per input velocity,
+    ``(..., 8, 4)`` for ``p = (Xu, Yu, Xd, Yd)``, from ``Ji,3 p' + Jo,3 X' = 0`` (004 eq. 21)
+    restricted to the tangent space of ``|x|^2 = 1`` (solved in least squares: G has more
+    generators than unknowns), and ``sigma``, the smallest singular value of Jo,3 with its
+    rows and columns normalized: near 0 at an output singularity, where the result is not
+    valid."""
+    pts = np.asarray(points, dtype=float)
+    plat = platform_from_points(pts, mode, gen, **params)
+    planar = _planar(gen, params)
+    vals = np.concatenate([pts, plat], axis=-1)
+    ji = gen.platform_input_jacobian(vals, **planar).reshape(pts.shape[:-1] + (-1, 4))
+    jo = gen.platform_output_jacobian(vals, **planar).reshape(pts.shape[:-1] + (-1, 8))
+    scale = np.linalg.norm(np.concatenate([ji, jo], axis=-1), axis=-1, keepdims=True)
+    scale = np.where(scale > 0, scale, 1.0)
+    ji, jo = ji / scale, jo / scale
+    cols = np.linalg.norm(jo, axis=-2, keepdims=True)  # equilibrate x (1) against y (mm)
+    sigma = np.linalg.svd(jo / np.where(cols > 0, cols, 1.0), compute_uv=False)[..., -1]
+    dx = -np.linalg.pinv(jo) @ ji
+    return dx, sigma
 
 
 def tool_from_platform(platform, n) -> np.ndarray:
@@ -127,7 +160,7 @@ def tool_ik(tool, gen, mode: int = 0, limits: bool = True, **params):
     """Active joints ``(t1, w1, q4, q5, n)`` for tool Study points ``(..., 8)`` in one working
     mode of the planar mechanisms (``gen.MODES``); returns ``(joints (..., 5), status)``."""
     pts, n, status = points_from_tool(tool, gen, **params)
-    planar = {k: v for k, v in params.items() if k in gen.PARAMETERS}
+    planar = _planar(gen, params)
     q, st = gen.ik_and_status(pts, mode=mode, limits=limits, **planar)
     status = np.where(status != 0, status, st).astype(np.int8)
     joints = np.concatenate([q, n[..., None]], axis=-1)
@@ -140,7 +173,7 @@ def tool_fk(joints, gen, **params) -> np.ndarray:
     ``(..., gen.FK_MODES * PLATFORM_MODES, 8)`` for ``joints = (..., 5) = (t1, w1, q4, q5, n)``;
     NaN where a mode is not real.  Mode ``k`` is planar mode ``k // 4``, platform ``k % 4``."""
     joints = np.asarray(joints, dtype=float)
-    planar = {k: v for k, v in params.items() if k in gen.PARAMETERS}
+    planar = _planar(gen, params)
     pts = gen.fk(joints[..., :4], **planar)  # (..., FK_MODES, 4)
     out = []
     for i in range(pts.shape[-2]):
