@@ -277,3 +277,8 @@ def test_platform_velocity_against_finite_differences(gen):
             fd = (tool.platform_from_points(p + e, 0, gen)
                   - tool.platform_from_points(p - e, 0, gen)) / (2 * h)
             np.testing.assert_allclose(dx[:, k], fd, atol=1e-7)
+
+
+def test_tool_functions_need_the_generated_module():
+    with pytest.raises(TypeError, match="pass the generated module"):
+        tool.platform_from_points(np.array([300.0, 180.0, 239.0, 180.0]), 0)

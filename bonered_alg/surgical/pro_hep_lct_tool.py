@@ -32,6 +32,9 @@ _ROLL_TOL = 1e-9
 
 
 def _par(gen, params: dict, names) -> list[float]:
+    if gen is None or not hasattr(gen, "PARAMETERS"):
+        raise TypeError("pro_hep_lct: pass the generated module "
+                        "(bonered_alg.generated.pro_hep_lct) as gen")
     out = []
     for k in names:
         v = params.get(k, gen.PARAMETERS.get(k))
@@ -158,7 +161,9 @@ def points_from_tool(tool, gen=None, **params) -> tuple[np.ndarray, np.ndarray, 
 
 def tool_ik(tool, gen, mode: int = 0, limits: bool = True, **params):
     """Active joints ``(t1, w1, q4, q5, n)`` for tool Study points ``(..., 8)`` in one working
-    mode of the planar mechanisms (``gen.MODES``); returns ``(joints (..., 5), status)``."""
+    mode of the planar mechanisms (``gen.MODES``); returns ``(joints (..., 5), status)``.
+    The tool's Z' points from its tip towards the robot (platform modes 0 and 2, as at the
+    entry point O of 004 Sect. 4); status codes are ``gen.STATUS``'s and this module's."""
     pts, n, status = points_from_tool(tool, gen, **params)
     planar = _planar(gen, params)
     q, st = gen.ik_and_status(pts, mode=mode, limits=limits, **planar)
