@@ -1016,7 +1016,6 @@ def _verify_platform(deriv) -> list:
 # ------------------------------------------------------------------ outputs beside the report
 def artifacts(deriv, gen) -> dict:
     """Table 5 reproduced (CSV) and the RCM deviation along both paths (CSV, PNG)."""
-    import io
 
     import matplotlib
 
@@ -1047,18 +1046,25 @@ def artifacts(deriv, gen) -> dict:
         ax.set(xlabel="control angle (deg)", ylabel="entry point to tool axis (mm)",
                title=f"path O'{name}")
         ax.legend(fontsize=7)
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
-    plt.close(fig)
-    out[f"{NAME}.rcm_deviation.png"] = buf.getvalue()
+    out[f"{NAME}.rcm_deviation.png"] = _png(fig)
     out.update(_workspace_files(deriv.extra["workspace"], gen))
     return out
 
 
-def _workspace_files(ws, gen) -> dict:
+def _png(fig) -> bytes:
+    """A figure as deterministic PNG bytes (no software stamp), then closed."""
     import io
 
+    import matplotlib.pyplot as plt
+
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def _workspace_files(ws, gen) -> dict:
     import matplotlib.pyplot as plt
     import numpy as np
 
@@ -1084,12 +1090,8 @@ def _workspace_files(ws, gen) -> dict:
     ax.set(xlabel="X (mm)", ylabel="Y (mm)",
            title=f"tool vertical (light) and dexterous +-{WORKSPACE_CONE_DEG:g} deg (dark)")
     ax.legend(fontsize=6, loc="lower left")
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
-    plt.close(fig)
     return {f"{NAME}.workspace.csv": "\n".join(lines) + "\n",
-            f"{NAME}.workspace.png": buf.getvalue()}
+            f"{NAME}.workspace.png": _png(fig)}
 
 
 def report_sections(deriv) -> list[str]:

@@ -56,7 +56,7 @@ def platform_from_points(points, mode: int = 0, gen=None, **params) -> np.ndarra
     if not 0 <= mode < PLATFORM_MODES:
         raise ValueError(f"pro_hep_lct: platform mode must be in 0..{PLATFORM_MODES - 1}, "
                          f"got {mode}")
-    dz, c, dn = _par(gen, params, ("Dz", "c", "Dn"))
+    dz, c = _par(gen, params, ("Dz", "c"))
     pts = np.asarray(points, dtype=float)
     if pts.shape[-1] != 4:
         raise ValueError(f"pro_hep_lct: points must have shape (..., 4) = (Xu, Yu, Xd, Yd), "
@@ -67,12 +67,10 @@ def platform_from_points(points, mode: int = 0, gen=None, **params) -> np.ndarra
         a = (uu - ud) / np.linalg.norm(uu - ud, axis=-1, keepdims=True)
     a = -a if mode & 1 else a
     rot = universal_rotation(a, bool(mode & 2))
-    if hasattr(gen, "platform_dual"):  # the dual part from G's linear generators
-        planar = _planar(gen, params)
-        xd = np.concatenate([rot[..., :4], pts[..., 2:4]], axis=-1)
-        return np.concatenate([rot[..., :4], gen.platform_dual(xd, **planar)], axis=-1)
-    origin = ud - dn * a  # a = R e_z after the flip of mode bit 0
-    return sn.product(sn.translation(origin), rot)
+    # the dual part from G's linear generators (generated platform_dual)
+    xd = np.concatenate([rot[..., :4], pts[..., 2:4]], axis=-1)
+    return np.concatenate([rot[..., :4], gen.platform_dual(xd, **_planar(gen, params))],
+                          axis=-1)
 
 
 def universal_rotation(axis, half_turn: bool = False) -> np.ndarray:
