@@ -33,8 +33,9 @@ from bonered_alg.elimination.engines import (  # noqa: E402
 )
 from bonered_alg.elimination.problem import EliminationProblem  # noqa: E402
 from bonered_alg.errors import EngineTimeoutError  # noqa: E402
-from bonered_alg.mechanisms import load  # noqa: E402
-from bonered_alg.pipeline import derive  # noqa: E402
+from bonered_alg.mechanisms import pro_hep_lct as phl  # noqa: E402
+from bonered_alg.pipeline.algebra import Algebra  # noqa: E402
+from bonered_alg.pipeline.runner import derive  # noqa: E402
 
 
 def median_time(fn, repeat):
@@ -47,11 +48,11 @@ def median_time(fn, repeat):
 
 
 def elimination_benchmarks(sympy_budget):
-    mod = load("pro_hep_lct")
-    mech = mod.build()
+    mod = phl
+    mech = mod.MECHANISM
     numeric = {mod.l1: 180, mod.l2: 160, mod.d: 60, mod.l3: 170, mod.l4: 150, mod.lq4d: 250}
     rows = []
-    for closure in mech.closures:
+    for closure in mech.actuated_closures:
         for leg in closure.legs:
             p = leg_problem(mech, closure, leg)
             variants = [("symbolic geometry", p)]
@@ -100,19 +101,20 @@ def reachable_poses(n, rng):
 
 def lambdify_baseline(derivation):
     """Plain sympy.lambdify of the same mode-0 IK roots and of -Ji^{-1} Jo."""
-    mod = derivation.module
-    par = [sp.Symbol(k, real=True) for k in mod.PARAMETERS]
-    sub = dict(mod.POSE_TO_STUDY)
+    mech = derivation.mechanism
+    par = list(mech.geometric)
+    pose, joints = mech.pose.coordinates, mech.joints
+    sub = dict(derivation.pose_to_study)
     solved = {}
     for step in derivation.steps:
         solved[step.joint] = step.roots()[0].subs(sub).subs(solved)
-    q_exprs = [solved[j] for j in mod.JOINTS]
-    ik = sp.lambdify([*mod.POSE, *par], q_exprs, modules="numpy")
+    q_exprs = [solved[j] for j in joints]
+    ik = sp.lambdify([*pose, *par], q_exprs, modules="numpy")
     gens = sp.Matrix([sp.expand(s.generator).subs(sub) for s in derivation.steps])
-    ji = sp.lambdify([*mod.POSE, *mod.JOINTS, *par],
-                     list(gens.jacobian(sp.Matrix(mod.JOINTS))), modules="numpy")
-    jo = sp.lambdify([*mod.POSE, *mod.JOINTS, *par],
-                     list(gens.jacobian(sp.Matrix(mod.POSE))), modules="numpy")
+    ji = sp.lambdify([*pose, *joints, *par],
+                     list(gens.jacobian(sp.Matrix(joints))), modules="numpy")
+    jo = sp.lambdify([*pose, *joints, *par],
+                     list(gens.jacobian(sp.Matrix(pose))), modules="numpy")
 
     def ik_fn(poses):
         cols = [poses[:, i] for i in range(4)]
@@ -242,7 +244,7 @@ def planar_tripod_benchmarks(n):
 
     from bonered_alg.mechanisms import planar_tripod as mod
 
-    d = derive("planar_tripod")
+    d = derive("planar_tripod").derivation
     rng = np.random.default_rng(5)
     poses = np.column_stack([rng.uniform(-40, 40, n), rng.uniform(-40, 40, n),
                              rng.uniform(190, 235, n), rng.uniform(-0.15, 0.15, n),
@@ -300,7 +302,7 @@ def tripod_planar_benchmarks(n):
 
     from bonered_alg.mechanisms import tripod_planar as mod
 
-    d = derive("tripod_planar")
+    d = derive("tripod_planar").derivation
     rng = np.random.default_rng(6)
     paper = np.column_stack([rng.uniform(-40, 40, n), rng.uniform(-40, 40, n),
                              rng.uniform(190, 260, n), rng.uniform(-0.15, 0.15, n),
@@ -396,14 +398,14 @@ def workspace_benchmarks(n_side=160):
 def pro_hep_lct_tool_benchmarks(n=100_000, n_fk=10_000, sympy_budget=120.0):
     """Issue 5: the mobile platform's ideal G per engine (no cache), tool IK throughput and
     the whole robot's forward kinematics (16 assembly modes) per configuration."""
-    from bonered_alg.mechanisms import pro_hep_lct as m
+    from bonered_alg.papers import p004_pro_hep_lct as paper
     from bonered_alg.surgical import pro_hep_lct_tool as tool
 
     out = {"G_derivation": {}}
     for eng in [SingularEngine()] + [SympyEngine(k) for k in SympyEngine.METHODS]:
         label = eng.name + (f"_{eng.method}" if hasattr(eng, "method") else "")
         try:
-            t = median_time(lambda e=eng: m.analyses(None, e, sympy_budget, False), 3
+            t = median_time(lambda e=eng: platform_ideal(e, sympy_budget), 3
                             if isinstance(eng, SingularEngine) else 1)
             out["G_derivation"][label + "_s"] = t
         except EngineTimeoutError:
@@ -414,8 +416,9 @@ def pro_hep_lct_tool_benchmarks(n=100_000, n_fk=10_000, sympy_budget=120.0):
     origin = np.column_stack([rng.uniform(260, 300, n), rng.uniform(160, 200, n),
                               rng.uniform(-150, -110, n)])
     poses = tool.tool_pose(origin, dirs)
-    t_ik = median_time(lambda: tool.tool_ik(poses, gen, mode=m.TABLE5_MODE, limits=False), 5)
-    joints, status = tool.tool_ik(poses, gen, mode=m.TABLE5_MODE, limits=False)
+    mode = paper.TABLE5_MODE
+    t_ik = median_time(lambda: tool.tool_ik(poses, gen, mode=mode, limits=False), 5)
+    joints, status = tool.tool_ik(poses, gen, mode=mode, limits=False)
     ok = joints[status == 0][:n_fk]
     t_fk = median_time(lambda: tool.tool_fk(ok, gen), 3)
     out.update({"tool_ik_poses_per_s": n / t_ik, "tool_ik_us_per_pose": t_ik / n * 1e6,
@@ -424,6 +427,16 @@ def pro_hep_lct_tool_benchmarks(n=100_000, n_fk=10_000, sympy_budget=120.0):
                 "tool_fk_us_per_configuration_all_16_modes": t_fk / len(ok) * 1e6})
     print(out, flush=True)
     return out
+
+
+def platform_ideal(engine, budget_s):
+    """The mobile platform's ideal G of pro_hep_lct (both mounted chains), no cache."""
+    from bonered_alg.solvers.legs import Elimination
+
+    mech = phl.MECHANISM
+    closure = mech.closure("platform")
+    algebra = Algebra(engine, budget_s, use_cache=False)
+    return [Elimination().derive(mech, closure, leg, algebra) for leg in closure.legs]
 
 
 def main():
@@ -441,7 +454,7 @@ def main():
         args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
         print(f"wrote {args.out} ({args.only} section)")
         return
-    derivation = derive("pro_hep_lct")
+    derivation = derive("pro_hep_lct").derivation
     results = {
         "machine": {"python": platform.python_version(), "numpy": np.__version__,
                     "sympy": sp.__version__, "cpus": os.cpu_count(),

@@ -53,22 +53,28 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
     c.add_argument("--root", type=Path, default=Path("."), help="project root")
     args = parser.parse_args(argv)
-    from .mechanisms import REGISTRY
+    from .registry import REGISTRY
 
     if args.command == "list":
         print("\n".join(REGISTRY))
         return 0
     if args.command in ("workspace", "comparison"):
-        from .workspace import command
-
         try:
-            return (command.workspace(args) if args.command == "workspace"
-                    else command.comparison(args))
+            if args.command == "workspace":
+                from .workspace import command
+
+                return command.workspace(args)
+            from .studies.comparison_report import write
+
+            written = write(Path(args.root).resolve(), args.workers, args.force)
+            print("comparison: " + (", ".join(p.name for p in written) if written
+                                    else "up to date"))
+            return 0
         except ValueError as exc:
             print(f"bonered-alg {args.command}: error: {exc}", file=sys.stderr)
             return 2
     from .elimination.engines import get_engine
-    from .pipeline import derive_all
+    from .pipeline.runner import derive_all
 
     try:
         engine = get_engine(args.engine)

@@ -8,16 +8,17 @@ from bonered_alg.elimination.closure import leg_problem
 from bonered_alg.elimination.engines import SingularEngine, SympyEngine
 from bonered_alg.elimination.polyterms import dimension_from_leading_monomials
 from bonered_alg.elimination.problem import EliminationProblem
-from bonered_alg.mechanisms import load
+from bonered_alg.mechanisms import planar_tripod
+from bonered_alg.mechanisms import pro_hep_lct as MOD
 
 pytestmark = pytest.mark.skipif(not SingularEngine().available(), reason="Singular missing")
 
-MOD = load("pro_hep_lct")
-MECH = MOD.build()
+MECH = MOD.MECHANISM
 
 
 def problems():
-    upper, lower = MECH.closures
+    upper, lower, platform = MECH.closures
+    yield leg_problem(MECH, platform, platform.legs[0])  # a mounted leg, chart |x|^2 = 1
     yield leg_problem(MECH, upper, upper.legs[0])
     for leg in lower.legs:
         yield leg_problem(MECH, lower, leg)
@@ -64,8 +65,7 @@ def test_algebraic_constant_runs_over_the_extension_field():
     """A kept constant with an irreducible minimal polynomial (s3^2 = 3) is handed to
     Singular as ``minpoly``; the answer is the same ideal as sympy's, where s3 is a variable.
     The planar leg of 000 exercises it with a real chain."""
-    mod = load("planar_tripod")
-    mech = mod.build()
+    mech = planar_tripod.MECHANISM
     planar = mech.closures[0]
     problem = leg_problem(mech, planar, planar.legs[0])
     assert "minpoly" in SingularEngine().script(problem)

@@ -146,15 +146,15 @@ def test_jacobian_is_implicit_derivative(gen):
 
 def test_against_mpmath_50_digits(gen, derivation):
     """Layer 3: the symbolic roots evaluated at 50 digits vs. the generated float code."""
-    mod = derivation.module
+    pose_map = derivation.mechanism.pose
     poses, _ = reachable_poses(10)
     par = {sp.Symbol(k, real=True): sp.Float(v, 50) for k, v in GEOMETRY.items()}
     for pose in poses:
         q = gen.ik(pose, 0, **GEOMETRY)
         vals = dict(par)
-        for sym, val in zip(mod.POSE, pose):
+        for sym, val in zip(pose_map.coordinates, pose):
             vals[sym] = sp.Float(val, 50)
-        vals.update({k: v.subs(vals) for k, v in mod.POSE_TO_STUDY.items()})
+        vals.update({k: v.subs(vals) for k, v in pose_map.to_study.items()})
         for step in derivation.steps:
             root = step.roots()[0]  # mode 0: '+sqrt' everywhere
             exact = sp.N(root.subs(vals), 50)

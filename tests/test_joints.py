@@ -25,7 +25,8 @@ def trans(v):
     return m
 
 
-def matrix_of(factors, values):
+def matrix_of(joint, values):
+    factors = joint.factors if isinstance(joint, jt.Joint) else joint
     study = ss.product(*[f.study() for f in factors])
     return np.array(ss.transform_from_study(study).subs(values), dtype=float)
 
@@ -46,9 +47,23 @@ def test_cylindrical_and_helical():
     vals = {u1: np.tan(th / 2), s: d}
     assert np.allclose(matrix_of(cyl, vals), rot("z", th) @ trans([0, 0, d]))
     hel = jt.helical("H", "z", u1, s, pitch=4.0)
-    assert all(f.coupling and "atan(u1)" in f.coupling for f in hel)
-    assert np.allclose(matrix_of(hel, {u1: np.tan(th / 2), s: 4.0 * th / (2 * np.pi)}),
-                       rot("z", th) @ trans([0, 0, 4.0 * th / (2 * np.pi)]))
+    # the coupling is typed and carried, not eliminated: s = pitch * theta (per radian)
+    assert hel.coupling == jt.HelicalCoupling(u1, s, sp.Float(4.0))
+    assert hel.dof == 1 and cyl.dof == 2 and hel.variables == (u1, s)
+    assert np.allclose(matrix_of(hel, {u1: np.tan(th / 2), s: 4.0 * th}),
+                       rot("z", th) @ trans([0, 0, 4.0 * th]))
+
+
+def test_parallelogram_is_a_circular_translation():
+    """The far link of a parallelogram moves on a circle and keeps its orientation."""
+    th, link = 0.7, (30.0, 0.0, 5.0)
+    par = jt.parallelogram("Pa", "y", u1, link)
+    got = matrix_of(par, {u1: np.tan(th / 2)})
+    assert np.allclose(got[:3, :3], np.eye(3))
+    assert np.allclose(got[:3, 3], rot("y", th)[:3, :3] @ np.array(link))
+    assert par.dof == 1 and par.variables == (u1,)
+    with pytest.raises(ValueError, match="needs three coordinates"):
+        jt.parallelogram("Pa", "y", u1, (1.0, 2.0))
 
 
 def test_universal():
@@ -70,8 +85,8 @@ def test_spherical_is_any_rotation():
 
 
 def test_offsets_and_leg_order():
-    leg = jt.Leg("L", tuple(jt.offset("O1", vector=(1.0, 2.0, 3.0))
-                            + jt.revolute("R", "z", u1) + jt.offset("O2", axis="x", value=5.0)))
+    leg = jt.leg("L", jt.offset("O1", vector=(1.0, 2.0, 3.0)), jt.revolute("R", "z", u1),
+                 jt.offset("O2", axis="x", value=5.0))
     th = 0.3
     got = np.array(ss.transform_from_study(leg.product()).subs({u1: np.tan(th / 2)}),
                    dtype=float)
@@ -83,4 +98,6 @@ def test_bad_joint_arguments():
     with pytest.raises(ValueError, match="universal joint U: needs two axes"):
         jt.universal("U", ("z",), (u1,))
     with pytest.raises(ValueError, match="axis must be one of"):
-        jt.revolute("R", "w", u1)[0].study()
+        jt.revolute("R", "w", u1).factors[0].study()
+    with pytest.raises(TypeError, match="expected Joint objects"):
+        jt.leg("L", jt.revolute("R", "z", u1).factors)

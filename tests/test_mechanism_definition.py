@@ -1,43 +1,54 @@
-"""Bad mechanism definitions give specific errors and leave outputs untouched."""
+"""The mechanism contract: bad declarations give specific errors before any algebra, and
+nothing is written."""
 
 import types
 
-import networkx as nx
 import pytest
 import sympy as sp
 
-from bonered_alg.chains.joints import Role
-from bonered_alg.chains.mechanism import Closure, Mechanism, Parameter, joint, leg
+from bonered_alg.chains.topology import loops, mobility_counts, topology
+from bonered_alg.declaration import (
+    Closure,
+    Coupling,
+    Parameter,
+    PoseMap,
+    Role,
+    declare,
+    joint,
+    leg,
+    load_declaration,
+)
 from bonered_alg.errors import (
     MechanismDefinitionError,
     NonClosingMechanismError,
     UndefinedParameterError,
     UnknownJointTypeError,
 )
-from bonered_alg.mechanisms import load
-from bonered_alg.pipeline import derive, write
+from bonered_alg.mechanisms import pro_hep_lct
+from bonered_alg.pipeline import runner
 
-u, s, a, X, Y = sp.symbols("u s a X Y", real=True)
+u, s, a, X, Y, px, py = sp.symbols("u s a X Y px py", real=True)
 
 
-def toy_module(name="toy", platform=None, chain_extra=(), joint_kind="revolute", geometry=("a",)):
-    def build():
-        g = nx.MultiGraph()
-        g.add_edge("base", "link", joint=joint_kind, label="u")
-        g.add_edge("link", "slider", joint="prismatic", label="s")
-        factors = [joint(name, "revolute", "F1", "z", u, Role.ACTIVE),
-                   joint(name, "offset", "F2", axis="x", value=a),
-                   joint(name, "prismatic", "F3", "x", s, Role.PASSIVE), *chain_extra]
-        cl = Closure("c", "P", (leg("L", *factors),),
-                     platform or (1, 0, 0, 0, 0, X, Y, 0), (X, Y))
-        return Mechanism(name, "toy", "test", {k: Parameter(k, 1.0, "mm", "") for k in geometry},
-                         (u,), (s,), (cl,), g, planar=True)
+def toy_fields(name="toy", platform=None, extra=(), couplings=(), **overrides):
+    joints = [joint(name, "prismatic", "F1", "x", u, Role.ACTIVE),
+              joint(name, "offset", "F2", axis="x", value=a),
+              joint(name, "prismatic", "F3", "y", s, Role.PASSIVE), *extra]
+    fields = dict(
+        name=name, title="toy", source="test", summary="one P-P leg",
+        parameters=(Parameter("a", 1.0, "mm", "offset"),), joints=(u,), joint_units=("1",),
+        closures=(Closure("c", "P", (leg("L", *joints),), platform or (1, 0, 0, 0, 0, X, Y, 0),
+                          (X, Y), couplings=couplings, motion="planar"),),
+        pose=PoseMap((px, py), ("mm", "mm"), {X: -px / 2, Y: -py / 2}),
+        forward_kinematics="not needed for the test")
+    fields.update(overrides)
+    return fields
 
-    mod = types.ModuleType(name)
-    mod.NAME, mod.build, mod.__file__ = name, build, __file__
-    mod.POSE, mod.JOINTS, mod.POSE_UNITS, mod.JOINT_UNITS = (X, Y), (u,), ("mm",) * 2, ("1",)
-    mod.POSE_TO_STUDY = {}
-    mod.verify = lambda d: []
+
+def toy_module(**kw) -> types.ModuleType:
+    mod = types.ModuleType("toy")
+    mod.MECHANISM = declare(**toy_fields(**kw))
+    mod.__file__ = __file__
     return mod
 
 
@@ -47,39 +58,100 @@ def test_unknown_joint_type_in_chain():
         joint("toy", "screwdriver", "F9", "z", u)
 
 
-def test_unknown_joint_type_in_topology():
-    with pytest.raises(UnknownJointTypeError, match="joint u between 'base' and 'link' has "
+def test_unknown_joint_type_in_a_coupling_linkage():
+    cp = Coupling(s - a, "a slider", linkage=(("base", "slider", "hinge", "h"),))
+    with pytest.raises(UnknownJointTypeError, match="joint h between 'base' and 'slider' has "
                                                     "unknown type 'hinge'"):
-        toy_module(joint_kind="hinge").build().validate()
+        load_declaration(toy_module(couplings=(cp,)))
 
 
 def test_undefined_parameter():
     b = sp.Symbol("b", real=True)
-    mod = toy_module(chain_extra=[joint("toy", "offset", "F4", axis="y", value=b)])
+    mod = toy_module(extra=[joint("toy", "offset", "F4", axis="y", value=b)])
     with pytest.raises(UndefinedParameterError, match=r"leg 'L', factor F4: parameter\(s\) "
                                                       r"\['b'\] are not declared"):
-        mod.build().validate()
+        load_declaration(mod)
 
 
 def test_wrong_role():
-    mod = toy_module(chain_extra=[joint("toy", "revolute", "F5", "z", s, Role.ACTIVE)])
+    mod = toy_module(extra=[joint("toy", "revolute", "F5", "z", s, Role.ACTIVE)])
     with pytest.raises(MechanismDefinitionError, match="F5: marked active but uses"):
-        mod.build().validate()
+        load_declaration(mod)
+
+
+def test_a_symbol_has_one_role():
+    # a passive joint named like a Study coordinate of the platform is the same symbol
+    mod = toy_module(extra=[joint("toy", "revolute", "F6", "z", X, Role.PASSIVE)])
+    with pytest.raises(MechanismDefinitionError, match=r"\['X'\] are both closure Study "
+                                                       "coordinate and passive joint"):
+        load_declaration(mod)
+
+
+def test_unknown_and_missing_fields_are_named():
+    with pytest.raises(MechanismDefinitionError, match=r"mechanism 'toy': unknown declaration "
+                                                       r"field 'limts' \(did you mean 'limits'"):
+        declare(**toy_fields(limts=()))
+    fields = toy_fields()
+    del fields["pose"]
+    with pytest.raises(MechanismDefinitionError, match="lacks the required field.*pose"):
+        declare(**fields)
+
+
+@pytest.mark.parametrize("value", [None, float("nan"), "1.0", True])
+def test_a_parameter_needs_a_finite_value(value):
+    mod = toy_module(parameters=(Parameter("a", value, "mm", "offset"),))
+    with pytest.raises(MechanismDefinitionError, match="parameter 'a' has value .*expected a "
+                                                       "finite number in mm"):
+        load_declaration(mod)
+
+
+def test_former_hooks_are_rejected():
+    mod = toy_module()
+    mod.verify = lambda d: []
+    with pytest.raises(MechanismDefinitionError, match=r"defines \['verify'\], names of the "
+                                                       "former hook contract"):
+        load_declaration(mod)
+    bare = types.ModuleType("old_style")
+    bare.build = lambda: None
+    with pytest.raises(MechanismDefinitionError, match="defines no MECHANISM"):
+        load_declaration(bare)
+
+
+def test_missing_checks_module_is_found_before_any_algebra():
+    mod = toy_module(checks="bonered_alg.papers.no_such_paper")
+    with pytest.raises(MechanismDefinitionError, match="no_such_paper.*cannot be imported"):
+        load_declaration(mod)
+    mod = toy_module(checks="bonered_alg.papers.study_algebra")
+    with pytest.raises(MechanismDefinitionError, match="defines no function verify"):
+        load_declaration(mod)
+
+
+def test_pose_map_must_cover_the_study_coordinates_the_ik_uses(tmp_path):
+    mod = toy_module(pose=PoseMap((px, py), ("mm", "mm"), {Y: -py / 2}))
+    with pytest.raises(MechanismDefinitionError, match=r"no expression for the Study "
+                                                       r"coordinate\(s\) \['X'\]"):
+        runner.derive(mod, use_cache=False)
 
 
 def test_non_closing_mechanism_leaves_outputs_untouched(tmp_path):
-    # the leg only rotates about Z; the platform is turned by 90 degrees about X: no closure
+    # the leg only translates; the platform is turned by 90 degrees about X: no closure
     mod = toy_module(platform=(1, 1, 0, 0, 0, X, Y, 0))
     (tmp_path / "generated").mkdir()
     (tmp_path / "derivations").mkdir()
     with pytest.raises(NonClosingMechanismError, match=r"mechanism 'toy': leg 'L' cannot close "
                                                        r"on the platform point P"):
-        write(derive(mod, use_cache=False), tmp_path)
+        runner.write(runner.derive(mod, use_cache=False), tmp_path)
     assert not any(tmp_path.rglob("*.*"))
 
 
 def test_topology_loops_and_mobility():
-    mech = load("pro_hep_lct").build()
-    assert len(mech.loops()) == 2
-    # 004 Sect. 3.1: the planar part is driven by q2, q3 (t1, w1), q4 and q5
-    assert mech.mobility() == 4 == len(mech.active)
+    """004 Sect. 3.1: the planar part is driven by q2, q3 (t1, w1), q4 and q5; the
+    topology comes from the legs (and the rod linkage of the coupling)."""
+    mech = pro_hep_lct.MECHANISM
+    actuated = mech.actuated_closures
+    assert len(loops(topology(actuated))) == 2
+    counts = {c.closure: c.mobility for c in mobility_counts(mech.closures)}
+    assert counts == {"upper planar mechanism": 2, "lower planar mechanism": 2}
+    assert sum(counts.values()) == 4 == len(mech.joints)
+    # the driven platform adds the loop through Pd, the platform and Pu
+    assert len(loops(topology(mech.closures))) == 3

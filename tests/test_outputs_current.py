@@ -5,30 +5,42 @@ import subprocess
 import sys
 
 import pytest
+from conftest import record_of
 
-from bonered_alg.mechanisms import REGISTRY
-from bonered_alg.pipeline import (
-    derivation_hash,
-    derive,
-    ik_module_source,
-    recorded_hash,
-    verification_json,
-)
-from bonered_alg.report.latex_report import render_report
+from bonered_alg.pipeline import outputs
+from bonered_alg.pipeline.provenance import derivation_hash
+from bonered_alg.pipeline.runner import current_hash
+from bonered_alg.pipeline.stages import GENERATOR
+from bonered_alg.registry import MECHANISMS, REGISTRY
 from tests.conftest import ROOT
 
 
 @pytest.mark.parametrize("name", REGISTRY)
 def test_committed_outputs_carry_current_hash(name):
-    assert recorded_hash(ROOT, name) == derivation_hash(name)
+    assert outputs.recorded_hash(ROOT, name) == current_hash(name)
 
 
 @pytest.mark.parametrize("name", REGISTRY)
 def test_rederivation_is_byte_identical(name):
-    d = derive(name)
-    assert ik_module_source(d) == (ROOT / f"generated/{name}.py").read_text()
-    assert render_report(d) == (ROOT / f"derivations/{name}.tex").read_text()
-    assert verification_json(d) == (ROOT / f"derivations/{name}.verification.json").read_text()
+    """Every file the derivation writes (module, report, verdicts, tables, plots) equals the
+    committed one byte for byte, and no committed file of the mechanism is left over."""
+    files = outputs.files(record_of(name))
+    for rel, content in files.items():
+        data = content if isinstance(content, bytes) else content.encode()
+        assert (ROOT / rel).read_bytes() == data, rel
+    committed = {p.relative_to(ROOT).as_posix() for p in (ROOT / "derivations").glob(f"{name}.*")
+                 if p.suffix not in (".pdf", ".aux", ".log", ".fls", ".fdb_latexmk", ".out")}
+    assert committed <= set(files), sorted(committed - set(files))
+
+
+def test_study_algebra_record_is_current():
+    from bonered_alg.papers import study_algebra
+
+    text = (ROOT / "derivations" / "study_algebra.tex").read_text()
+    assert study_algebra.record_hash() in text
+    verdicts = study_algebra.algebra_verdicts()
+    assert outputs.verification_json(verdicts) == (
+        ROOT / "derivations" / "study_algebra.verification.json").read_text()
 
 
 def test_second_derive_changes_nothing(tmp_path):
@@ -38,38 +50,58 @@ def test_second_derive_changes_nothing(tmp_path):
     out = subprocess.run([sys.executable, "-m", "bonered_alg.cli", "derive", "--root",
                           str(tmp_path)], capture_output=True, text=True, cwd=ROOT)
     assert out.returncode == 0, out.stderr
-    for name in REGISTRY:
+    for name in (*REGISTRY, "study_algebra"):
         assert f"{name}: up to date" in out.stdout
     after = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
     assert after == before
 
 
-def test_hash_covers_only_the_mechanism_and_the_core(tmp_path):
+def _edit(path):
+    path.write_text(path.read_text() + "\n# changed\n")
+
+
+def test_hash_covers_what_produces_the_mechanism_and_nothing_else(tmp_path):
     pkg = tmp_path / "bonered_alg"
     shutil.copytree(ROOT / "bonered_alg", pkg, ignore=shutil.ignore_patterns("__pycache__"))
+
+    def hashes():
+        return {n: derivation_hash(MECHANISMS[n], GENERATOR, pkg) for n in REGISTRY}
+
+    h0 = hashes()
+    assert len(set(h0.values())) == len(h0)
+    # registering a mechanism (and adding its module) re-derives no other one
     (pkg / "mechanisms" / "other.py").write_text("X = 1\n")
-    h_pro, h_other = derivation_hash("pro_hep_lct", pkg), derivation_hash("other", pkg)
-    (pkg / "mechanisms" / "other.py").write_text("X = 2\n")
-    assert derivation_hash("pro_hep_lct", pkg) == h_pro
-    assert derivation_hash("other", pkg) != h_other
-    # an optional package shapes only the mechanisms that declare it (USES_PACKAGES)
-    h_other = derivation_hash("other", pkg)
-    (pkg / "surgical" / "manipulation.py").write_text(
-        (pkg / "surgical" / "manipulation.py").read_text() + "\n# changed\n")
-    assert derivation_hash("other", pkg) == h_other
-    assert derivation_hash("pro_hep_lct", pkg) != h_pro
-    h_pro = derivation_hash("pro_hep_lct", pkg)
-    (pkg / "algebra" / "convention.py").write_text(
-        (pkg / "algebra" / "convention.py").read_text() + "\n# changed\n")
-    assert derivation_hash("pro_hep_lct", pkg) != h_pro
-    assert derivation_hash("other", pkg) != h_other
+    _edit(pkg / "registry.py")
+    assert hashes() == h0
+    # a mechanism's own declaration, paper checks and studies shape only that mechanism
+    for rel, name in (("mechanisms/stewart.py", "stewart"),
+                      ("papers/p000_planar_tripod.py", "planar_tripod"),
+                      ("studies/rcm_paths_004.py", "pro_hep_lct"),
+                      ("surgical/pro_hep_lct_tool.py", "pro_hep_lct"),
+                      ("analyses/parasitic.py", None)):
+        before = hashes()
+        _edit(pkg / rel)
+        after = hashes()
+        changed = {n for n in REGISTRY if after[n] != before[n]}
+        if name is None:  # the parasitic analysis: both tripod mechanisms use it
+            assert changed == {"planar_tripod", "tripod_planar"}, rel
+        else:
+            assert changed == {name}, rel
+    # the shared engine shapes everything; the workspace tool and the command line nothing
+    before = hashes()
+    _edit(pkg / "workspace" / "scan.py")
+    _edit(pkg / "cli.py")
+    assert hashes() == before
+    _edit(pkg / "algebra" / "convention.py")
+    after = hashes()
+    assert all(after[n] != before[n] for n in REGISTRY)
 
 
 def test_missing_engine_leaves_outputs_untouched(tmp_path, monkeypatch):
     """An engine that is not installed (and no cached result) stops before any write."""
     from bonered_alg.elimination.engines import SingularEngine
     from bonered_alg.errors import EngineUnavailableError
-    from bonered_alg.pipeline import derive_all
+    from bonered_alg.pipeline.runner import derive_all
 
     monkeypatch.setenv("BONERED_CACHE_DIR", str(tmp_path / "empty-cache"))
     for folder in ("generated", "derivations"):
@@ -79,19 +111,3 @@ def test_missing_engine_leaves_outputs_untouched(tmp_path, monkeypatch):
         derive_all(tmp_path, ["pro_hep_lct"], force=True,
                    engine=SingularEngine("no-such-singular"), log=lambda _: None)
     assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before
-
-
-@pytest.mark.parametrize("name", REGISTRY)
-def test_artifacts_are_reproduced_byte_for_byte(name):
-    """Trajectory tables and plots written by make derive are deterministic and current."""
-    from bonered_alg.mechanisms import load
-    from bonered_alg.pipeline import load_generated
-
-    if not hasattr(load(name), "artifacts"):
-        pytest.skip("no artifacts")
-    d = derive(name)
-    gen = load_generated(ik_module_source(d), name)
-    for rel, content in d.module.artifacts(d, gen).items():
-        committed = (ROOT / "derivations" / rel)
-        data = content if isinstance(content, bytes) else content.encode()
-        assert committed.read_bytes() == data, rel

@@ -1,7 +1,7 @@
 """Pro-Hep-LCT planar chains against the equations printed in 004 (layer 1).
 
 Reference values are the paper's printed equations, transcribed in
-``bonered_alg.mechanisms.pro_hep_lct.PRINTED`` (eq. 14, 15, 16, 37).  Where the derivation
+``bonered_alg.papers.p004_pro_hep_lct.PRINTED`` (eq. 14, 15, 16, 37).  Where the derivation
 disagrees, the test pins the *derived* form and the exact printed discrepancy.
 """
 
@@ -10,32 +10,30 @@ import json
 import sympy as sp
 
 from bonered_alg.mechanisms import pro_hep_lct as m
+from bonered_alg.papers import p004_pro_hep_lct as paper
+from bonered_alg.papers import study_algebra
 from bonered_alg.verification import constant_ratio
 from tests.conftest import ROOT
 
 
-def verdicts(derivation):
-    return {(v.ref, v.quantity): v for v in derivation.verification}
-
-
-def by_ref(derivation, ref):
-    return [v for v in derivation.verification if v.ref == ref]
+def by_ref(record, ref):
+    return [v for v in record.verification if v.ref == ref]
 
 
 def test_eq16_generator_1_confirmed(derivation):
     """004 eq. (16), first generator of Gd: equal to the derived chain-1 ideal generator."""
     gens = derivation.leg("D1").result.generators
     assert len(gens) == 1
-    assert constant_ratio(m.PRINTED["eq16"]["D1"], gens[0]) == 1
+    assert constant_ratio(paper.PRINTED["eq16"]["D1"], gens[0]) == 1
 
 
-def test_eq16_generator_2_is_the_d_sign_erratum(derivation):
+def test_eq16_generator_2_is_the_d_sign_erratum(derivation, record):
     """004 eq. (16), second generator: printed = derived with d -> -d (Pd not the midpoint)."""
     (g,) = derivation.leg("D2").result.generators
-    printed = m.PRINTED["eq16"]["D2"]
+    printed = paper.PRINTED["eq16"]["D2"]
     assert constant_ratio(printed, g) is None
     assert constant_ratio(printed, g.subs(m.d, -m.d)) == 1
-    (v,) = by_ref(derivation, "004 eq. (16), generator 2")
+    (v,) = by_ref(record, "004 eq. (16), generator 2")
     assert v.verdict == "erratum" and "d -> -d" in v.detail
 
 
@@ -50,18 +48,18 @@ def test_geometric_meaning_of_generator_2(derivation):
     assert sp.simplify(g.subs(on) * sp.cos(th / 2) ** 2 / 4 - circle) == 0
 
 
-def test_eq14_pu_drops_dz(derivation):
+def test_eq14_pu_drops_dz(derivation, record):
     """004 eq. (14): the printed Pu has y3 = 0; the product of Table 1 has y3 = -Dz/2."""
     pu = derivation.leg("U").product
     assert sp.expand(pu[7] + m.Dz / 2) == 0
-    assert all(sp.expand(sp.sympify(p) - c) == 0 for p, c in zip(m.PRINTED["eq14"][:7], pu[:7]))
-    (v,) = by_ref(derivation, "004 eq. (14)")
+    assert all(sp.expand(sp.sympify(p) - c) == 0 for p, c in zip(paper.PRINTED["eq14"][:7], pu[:7]))
+    (v,) = by_ref(record, "004 eq. (14)")
     assert v.verdict == "erratum"
 
 
-def test_eq15_components(derivation):
+def test_eq15_components(derivation, record):
     """004 eq. (15): x0, y1, y2 of chain 1 confirmed (scale -4); x3 has the t1, t2 signs wrong."""
-    got = {v.ref: v.verdict for v in derivation.verification if v.ref.startswith("004 eq. (15)")}
+    got = {v.ref: v.verdict for v in record.verification if v.ref.startswith("004 eq. (15)")}
     assert got == {
         "004 eq. (15), chain 1, x0": "confirmed-symbolic",
         "004 eq. (15), chain 1, x3": "erratum",
@@ -78,8 +76,8 @@ def test_eq15_components(derivation):
     assert sp.expand(prod[3] - (m.t1 + m.t2 + m.t3 - m.t1 * m.t2 * m.t3)) == 0
 
 
-def test_eq37_upper_input_singularity(derivation):
-    (v,) = by_ref(derivation, "004 eq. (37)")
+def test_eq37_upper_input_singularity(derivation, record):
+    (v,) = by_ref(record, "004 eq. (37)")
     assert v.verdict == "confirmed-symbolic"
 
 
@@ -97,11 +95,16 @@ def test_lower_boundary_is_links_aligned(derivation):
     assert found == {sp.expand(r) for r in radius2}
 
 
-def test_study_eq5_erratum_and_eq13(derivation):
-    assert by_ref(derivation, "004 eq. (5)")[0].verdict == "erratum"
-    assert by_ref(derivation, "004 eq. (13)")[0].verdict == "confirmed-symbolic"
-    (num,) = by_ref(derivation, "004 eq. (4)+(13)")
+def test_study_eq5_erratum_and_eq13():
+    """004 Sect. 2 has its own record: the framework, not a mechanism."""
+    got = {v.ref: v for v in study_algebra.algebra_verdicts()}
+    assert got["004 eq. (5)"].verdict == "erratum"
+    assert got["004 eq. (13)"].verdict == "confirmed-symbolic"
+    num = got["004 eq. (4)+(13)"]
     assert num.verdict == "confirmed-numeric" and num.max_error < 1e-9
+    committed = json.loads((ROOT / "derivations" / "study_algebra.verification.json")
+                           .read_text())
+    assert [e["ref"] for e in committed] == list(got)
 
 
 def test_verification_json_schema():
@@ -112,5 +115,9 @@ def test_verification_json_schema():
         assert set(e) == {"ref", "quantity", "verdict", "max_error", "detail"}
     refs = {e["ref"] for e in data}
     for needed in ("004 eq. (14)", "004 eq. (16), generator 1", "004 eq. (16), generator 2",
-                   "004 Table 2, Pd1", "004 Table 1, Pu4", "004 eq. (5)"):
+                   "004 Table 2, Pd1", "004 Table 1, Pu4"):
         assert needed in refs
+    # the Study-parameter framework's verdicts are in their own record, not a mechanism's
+    for name in ("pro_hep_lct", "planar_tripod", "tripod_planar", "stewart"):
+        data = json.loads((ROOT / "derivations" / f"{name}.verification.json").read_text())
+        assert "004 eq. (5)" not in {e["ref"] for e in data}, name

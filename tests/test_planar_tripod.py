@@ -6,10 +6,9 @@ import importlib
 import numpy as np
 import pytest
 import sympy as sp
+from conftest import record_of
 from independent_planar_tripod import ik as ik_independent
 from mpmath_reference import assert_ik_matches_mpmath
-
-from bonered_alg.pipeline import derive
 
 RNG = np.random.default_rng(11)
 
@@ -20,8 +19,13 @@ def m():
 
 
 @pytest.fixture(scope="module")
-def d():
-    return derive("planar_tripod")
+def rec():
+    return record_of("planar_tripod")
+
+
+@pytest.fixture(scope="module")
+def d(rec):
+    return rec.derivation
 
 
 def poses(n):
@@ -68,8 +72,8 @@ def test_imports_without_sympy():
     assert np.allclose(q[:3], 2 * 190 / np.sqrt(3)) and np.allclose(q[3:], 200.0)
 
 
-def test_paper_verdicts(d):
-    got = {v.ref: v.verdict for v in d.verification}
+def test_paper_verdicts(rec):
+    got = {v.ref: v.verdict for v in rec.verification}
     for ref in ("000 eq. (10)", "000 eq. (9)", "000 eq. (16)", "000 eq. (42)",
                 "000 eq. (5), q1", "000 eq. (5), q2", "000 eq. (5), q3", "000 eq. (37)-(38)",
                 "000 eq. (37)"):
@@ -84,7 +88,7 @@ def test_parasitic_motion_is_derived_not_assumed(d):
     """000 eq. (10): gamma2 = 0, y2 = 0 and x2 = -rb sa sb come out of the lex basis."""
     from bonered_alg.mechanisms import planar_tripod as pt
 
-    par = d.extra["parasitic"]
+    par = d.analyses["parasitic"].solved
     assert par[pt.tg2] == 0 and par[pt.y2] == 0
     a, b = sp.symbols("a b", real=True)
     x2 = par[pt.x2].subs({pt.ta: sp.tan(a / 2), pt.tb: sp.tan(b / 2)})

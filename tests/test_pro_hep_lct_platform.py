@@ -11,10 +11,12 @@ import sympy as sp
 from scipy.optimize import least_squares
 
 from bonered_alg.mechanisms import pro_hep_lct as m
+from bonered_alg.papers import p004_pro_hep_lct as paper
+from bonered_alg.studies import rcm_paths_004
 from bonered_alg.surgical import manipulation as mp
 from bonered_alg.surgical import pro_hep_lct_tool as tool
 
-PRINTED = {row[0]: row for row in m.TABLE5}
+PRINTED = {row[0]: row for row in paper.TABLE5}
 
 
 def _rx(a):
@@ -39,7 +41,7 @@ def test_geometry_recovered_from_table5(gen):
     equal links; the module's values are this fit rounded to 0.01 mm."""
     dn = 110.0  # O = (300, 180, -110): 004 Sect. 4
     rows = []
-    for label, axis, angle, _u, t1, w1, *_ in m.TABLE5:
+    for label, axis, angle, _u, t1, w1, *_ in paper.TABLE5:
         shift = dn * np.tan(np.radians(abs(angle)))
         ud = (300 + (shift if axis == "y" else 0), 180 + (shift if axis == "x" else 0))
         rows.append((label, ud, t1, w1))
@@ -77,7 +79,7 @@ def test_table5_rows(gen):
     """004 Table 5 through the tool IK: every row within 1.5 units of the last printed digit,
     except two: B 5 deg prints t1 = -0.1189 for -0.1198 (digits transposed) and B 10 deg
     prints w1 = 0.0101 for -0.0102 (sign)."""
-    rows = {r["row"]: r for r in m.table5(gen)}
+    rows = {r["row"]: r for r in rcm_paths_004.table5(gen)}
     assert len(rows) == 13
     for label, r in rows.items():
         assert r["status"] == 0
@@ -88,8 +90,8 @@ def test_table5_rows(gen):
     assert rows["B 10 deg"]["model"][1] == pytest.approx(-0.0102, abs=1e-4)
 
 
-def test_table5_verdicts(derivation):
-    got = {v.ref: v.verdict for v in derivation.verification if "Table 5" in v.ref}
+def test_table5_verdicts(record):
+    got = {v.ref: v.verdict for v in record.verification if "Table 5" in v.ref}
     assert got["004 Table 5, B 5 deg"] == "erratum"
     assert got["004 Table 5, B 10 deg"] == "erratum"
     assert sum(1 for v in got.values() if v == "confirmed-numeric") == 11
@@ -98,7 +100,7 @@ def test_table5_verdicts(derivation):
 def test_G_counts_and_sg7_sg8(derivation):
     """004 eq. (18): Hilbert dimension 0; Sect. 3.4: four end-effector modes; Sect. 3.3:
     sg7, sg8 are not singularities of the constraint variety."""
-    counts = derivation.extra["G_counts"]
+    counts = derivation.analyses["G_counts"]
     assert counts["generic"]["dimension"] == 0 and counts["generic"]["count"] == 8
     for label, cnt in counts.items():
         if label != "Dz = 0 and Uu = Ud":
@@ -108,7 +110,7 @@ def test_G_counts_and_sg7_sg8(derivation):
 
 def _G_function(derivation, gen):
     par = {sp.Symbol(k, real=True): v for k, v in gen.PARAMETERS.items()}
-    gens = [g.subs(par) for g in derivation.extra["G"]]
+    gens = [g.subs(par) for g in derivation.closure_generators("platform")]
     return sp.lambdify([m.Xu, m.Yu, m.Xd, m.Yd, *m.PX], gens, "numpy")
 
 
@@ -153,12 +155,12 @@ def test_platform_against_matrices(gen):
 def test_fk_of_ik_is_identity(gen):
     """FK(IK(P)) = P for random tool poses of the Table 5 working mode."""
     rng = np.random.default_rng(11)
-    o = np.asarray(m.TABLE5_ENTRY)
+    o = np.asarray(paper.TABLE5_ENTRY)
     ang = rng.uniform(-25, 25, 30)
     axes = rng.choice(["x", "y"], 30)
     poses = np.stack([tool.rcm_path(o, ax, [a], rng.uniform(20, 120))[0]
                       for ax, a in zip(axes, ang)])
-    joints, status = tool.tool_ik(poses, gen, mode=m.TABLE5_MODE, limits=False)
+    joints, status = tool.tool_ik(poses, gen, mode=paper.TABLE5_MODE, limits=False)
     assert np.all(status == 0)
     sols = tool.tool_fk(joints, gen)  # (30, 16, 8)
     assert sols.shape[1] == gen.FK_MODES * tool.PLATFORM_MODES
@@ -168,15 +170,15 @@ def test_fk_of_ik_is_identity(gen):
 
 
 def test_tool_ik_rejects_a_roll_the_joints_cannot_make(gen):
-    pose = mp.rcm(np.asarray(m.TABLE5_ENTRY), 0.1, "z", 0.0)  # a turn about the tool axis
-    joints, status = tool.tool_ik(pose, gen, mode=m.TABLE5_MODE)
+    pose = mp.rcm(np.asarray(paper.TABLE5_ENTRY), 0.1, "z", 0.0)  # a turn about the tool axis
+    joints, status = tool.tool_ik(pose, gen, mode=paper.TABLE5_MODE)
     assert status == tool.NOT_A_UNIVERSAL_JOINT_POSE and np.all(np.isnan(joints))
 
 
 def test_manipulation_eq8_to_12_against_matrices():
     """004 eq. (8)-(12) against products of homogeneous matrices."""
     from bonered_alg.algebra import study_numeric as sn
-    o = np.asarray(m.TABLE5_ENTRY)
+    o = np.asarray(paper.TABLE5_ENTRY)
     mo = sn.transform_from_study(o)
     ins = mp.insert(o, 40.0)
     np.testing.assert_allclose(sn.transform_from_study(ins), mo @ _t([0, 0, 40.0]), atol=1e-12)
@@ -197,8 +199,8 @@ def test_manipulation_eq8_to_12_against_matrices():
                                atol=1e-12)
 
 
-def test_rcm_deviation_zero_at_control_points(derivation):
-    dev = derivation.extra["rcm_deviation"]
+def test_rcm_deviation_zero_at_control_points(record):
+    dev = record.studies["rcm_paths"].data["rcm_deviation"]
     for d in dev.values():
         norm = np.linalg.norm(d["deviation"], axis=-1)
         assert d["at_control_points"] < 1e-9
@@ -206,16 +208,16 @@ def test_rcm_deviation_zero_at_control_points(derivation):
         assert norm[::50].max() < 1e-9
 
 
-def test_printed_argument_lists_of_sg3_to_sg6(derivation):
+def test_printed_argument_lists_of_sg3_to_sg6(derivation, record):
     """004 eq. (24)-(27) print only argument lists.  The output singularity of the lower
     mechanism in (t1, w1) (det_Jo_Pd with the pose eliminated) depends on every link: no
     factor matches sg3's (t1, w1, l1, l3), nor sg4-sg6's lists that omit l4."""
-    facs = derivation.extra["input_space_singularities"]["det_Jo_Pd"]
+    facs = derivation.analyses["input_space_singularities"]["det_Jo_Pd"]
     assert facs
     for _f, syms in facs:
         names = {str(s) for s in syms}
         assert {"l2", "l4", "t1", "w1"} <= names
-    got = {v.ref: v.verdict for v in derivation.verification}
+    got = {v.ref: v.verdict for v in record.verification}
     assert got["004 eq. (24)"] == "confirmed-symbolic"
     for ref in ("004 eq. (25)", "004 eq. (26)", "004 eq. (27)"):
         assert got[ref] == "erratum"
@@ -256,7 +258,7 @@ def test_input_space_factor_vanishes_at_parallel_links(derivation, gen):
     t = np.tan(q2 / 2)
     sub = {m.l1: L1, m.l2: L2, m.l3: L3, m.l4: L4, m.d: D, m.lq4d: LQ}
     facs = [sp.lambdify([m.t1, m.w1], f.subs(sub)) for f, _ in
-            derivation.extra["input_space_singularities"]["det_Jo_Pd"]]
+            derivation.analyses["input_space_singularities"]["det_Jo_Pd"]]
     scale = [abs(f(t + 0.05, w - 0.05)) for f in facs]
     vals = [abs(f(t, w)) for f in facs]
     assert min(v / s for v, s in zip(vals, scale)) < 1e-6

@@ -5,12 +5,12 @@ import subprocess
 
 import pytest
 
-from bonered_alg.mechanisms import REGISTRY
+from bonered_alg.registry import REGISTRY
 from tests.conftest import ROOT
 
 
 @pytest.mark.skipif(shutil.which("latexmk") is None, reason="no LaTeX toolchain")
-@pytest.mark.parametrize("name", [*REGISTRY, "bone_reduction_workspace"])
+@pytest.mark.parametrize("name", [*REGISTRY, "study_algebra", "bone_reduction_workspace"])
 def test_report_compiles(tmp_path, name):
     for f in (ROOT / "derivations").glob("*"):
         if f.name == f"{name}.tex" or f.suffix == ".png":

@@ -9,10 +9,11 @@ import pytest
 import sympy as sp
 from bonered_alg.generated import stewart as gen
 
-from bonered_alg.chains.joints import Role
-from bonered_alg.chains.mechanism import joint, leg
+from bonered_alg.chains.joints import Role, joint, leg
 from bonered_alg.elimination import sphere_leg
-from bonered_alg.mechanisms import load
+from bonered_alg.mechanisms import stewart
+from bonered_alg.pipeline.algebra import Algebra
+from bonered_alg.solvers.legs import DistanceLeg
 from tests import independent_stewart as ind
 
 RNG = np.random.default_rng(20261122)
@@ -61,14 +62,11 @@ def test_negative_strokes_are_the_other_modes():
 def test_distance_leg_is_certified_and_rps_leg_is_not():
     """The U-P-S leg passes the three certificate steps; an R-P-S leg (one revolute before
     the stroke) has a 5-dimensional image and is left to elimination."""
-    mod = load("stewart")
-    mech = mod.build()
+    mech = stewart.MECHANISM
     closure = mech.closures[0]
-    from bonered_alg.pipeline import _distance_leg_problem
-
-    problem, note = _distance_leg_problem(mech, closure, closure.legs[1])
-    assert problem is not None and "dimension 6" in note
-    assert problem.eliminate == ()
+    ideal = DistanceLeg().derive(mech, closure, closure.legs[1], Algebra.default())
+    assert ideal is not None and "dimension 6" in ideal.certificate
+    assert ideal.problem.eliminate == ()
     # the same leg with its universal joint reduced to one revolute
     u, e = sp.Symbol("u", real=True), sp.symbols("e0:4", real=True)
     q = sp.Symbol("q", real=True)

@@ -5,11 +5,10 @@ import importlib
 
 import numpy as np
 import pytest
+from conftest import record_of
 from independent_tripod_planar import jacobian_fd, joints, platform_b
 from mpmath_reference import assert_ik_matches_mpmath
 from scipy.spatial.transform import Rotation
-
-from bonered_alg.pipeline import derive
 
 RNG = np.random.default_rng(21)
 S3 = np.sqrt(3.0)
@@ -21,8 +20,13 @@ def m():
 
 
 @pytest.fixture(scope="module")
-def d():
-    return derive("tripod_planar")
+def rec():
+    return record_of("tripod_planar")
+
+
+@pytest.fixture(scope="module")
+def d(rec):
+    return rec.derivation
 
 
 def poses(n):
@@ -146,8 +150,8 @@ def test_limits(m):
     assert np.degrees(worst) > 20 and m.ik_status(tilt) == m.PASSIVE_JOINT_LIMIT
 
 
-def test_paper_verdicts(d):
-    got = {v.ref: v.verdict for v in d.verification}
+def test_paper_verdicts(rec):
+    got = {v.ref: v.verdict for v in rec.verification}
     for ref in ("001 eq. (9)", "001 eq. (10)", "001 eq. (11)", "001 eq. (12)", "001 eq. (21)",
                 "001 eq. (22)", "001 eq. (23)", "001 eq. (48)-(49)", "001 eq. (50)",
                 "001 eq. (51)"):

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from bonered_alg.cli import main
-from bonered_alg.workspace import bone_reduction as br
+from bonered_alg.studies import bone_reduction as br
 from bonered_alg.workspace.grid import Axis, Grid
 from bonered_alg.workspace.membership import IN_WORKSPACE, classify
 from bonered_alg.workspace.plots import overlay
@@ -204,7 +204,7 @@ def test_overlay_is_deterministic(tmp_path):
 def test_printed_table_inconsistencies_are_found():
     """001 Table 1 prints gamma in [-28; 31] with width 54 for the hybrid at the target, and
     Sect. 3 says +128% for gamma at homing where the widths 101 / 46 give +119.6%."""
-    from bonered_alg.workspace.comparison_report import _printed_consistency
+    from bonered_alg.studies.comparison_report import _printed_consistency
 
     found = {c["quantity"]: c["finding"] for c in _printed_consistency()}
     assert "59" in found["tripod_planar target gamma"]
@@ -213,7 +213,7 @@ def test_printed_table_inconsistencies_are_found():
 
 
 def test_comparison_outputs_are_current():
-    from bonered_alg.workspace.comparison_report import comparison_hash, recorded_hash
+    from bonered_alg.studies.comparison_report import comparison_hash, recorded_hash
     from tests.conftest import ROOT
 
     assert recorded_hash(ROOT) == comparison_hash()

@@ -12,7 +12,7 @@ Storage order: ``[x0, x1, x2, x3, y0, y1, y2, y3]`` (004 eq. 1), the dual quater
   above the map from homogeneous transforms is a homomorphism:
   ``study(T1 @ T2) = study(T1) * study(T2)``, so a chain is written base-to-tip in the order
   of its matrix product.  (It equals pytransform3d's dual quaternion with the dual part
-  negated; ``tests/test_study_against_pytransform3d.py`` pins this.)
+  negated; ``tests/test_study_algebra.py`` pins this against pytransform3d.)
 
 The formulas below are written once for any ring element type that supports ``+``, ``-``
 and ``*`` (sympy expressions or numpy arrays), and are shared by both algebras.

@@ -120,6 +120,14 @@ def pose_from_study(a: Study) -> tuple[sp.Expr, ...]:
             sp.atan2(-r[2][0], sp.sqrt(r[0][0] ** 2 + r[1][0] ** 2)), sp.atan2(r[1][0], r[0][0]))
 
 
+def study_from_pose(x, y, z, alpha, beta, gamma) -> Study:
+    """Study point of the pose ``(x, y, z, alpha, beta, gamma)`` with ``R = Rz(gamma)
+    Ry(beta) Rx(alpha)`` (DESIGN.md section 3), in the tangents of the half angles: the
+    inverse of :func:`pose_from_study`."""
+    return product(translation_vector((x, y, z)), rotation("z", sp.tan(gamma / 2)),
+                   rotation("y", sp.tan(beta / 2)), rotation("x", sp.tan(alpha / 2)))
+
+
 def tan_half_substitution(expr: sp.Expr, pairs: Iterable[tuple[sp.Symbol, sp.Symbol]]) -> sp.Expr:
     """``sin(a)``, ``cos(a)`` -> ``2t/(1+t^2)``, ``(1-t^2)/(1+t^2)`` for each ``(a, t)``: the
     papers' trigonometric expressions in the tan-half-angle variables of the chains."""

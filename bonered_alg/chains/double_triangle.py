@@ -21,14 +21,13 @@ from collections.abc import Sequence
 
 import sympy as sp
 
-from .joints import Leg, Role
-from .mechanism import joint, leg
+from .joints import Leg, Role, joint, leg
 
 
 def prp_legs(mechanism: str, r: sp.Expr, s3: sp.Symbol, strokes: Sequence[sp.Symbol],
              revolutes: Sequence[sp.Symbol], passive_strokes: Sequence[sp.Symbol],
              names: Sequence[str] = ("P1", "P2", "P3"), height: sp.Expr = 0,
-             upper: str = "MP1", corner: str = "B") -> list[Leg]:
+             upper: str = "MP1", corner: str = "B") -> tuple[Leg, ...]:
     """The three PRP legs of the double-triangular mechanism of circumradius ``r``."""
     active, passive = Role.ACTIVE, Role.PASSIVE
     half = s3 / 2
@@ -69,4 +68,4 @@ def prp_legs(mechanism: str, r: sp.Expr, s3: sp.Symbol, strokes: Sequence[sp.Sym
                        vector=tuple(-c for c in corners[k]),
                        description=f"from the {upper} corner {corner}{n} to its centre"))
         legs.append(leg(lab, *f))
-    return legs
+    return tuple(legs)

@@ -22,7 +22,8 @@ def cache_dir() -> Path:
 def _cached(problem, engine: Engine, use_cache: bool,
             compute: Callable[[], tuple[tuple, float]]) -> tuple[tuple, float, bool]:
     """(basis, seconds, cached) from the cache, or from ``compute()`` (then stored)."""
-    path = cache_dir() / f"{problem.key(engine.name)}.json"
+    who = engine.identity if engine.available() else engine.name
+    path = cache_dir() / f"{problem.key(who)}.json"
     if use_cache and path.is_file():
         try:
             data = json.loads(path.read_text())

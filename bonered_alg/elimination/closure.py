@@ -1,34 +1,55 @@
 """Closure equations of a leg and the elimination problem that removes its passive joints.
 
-A leg closes on the platform when its chain product ``C`` and the platform's Study point ``X``
-are the same projective point: ``C = lambda X`` with ``lambda != 0``.  With the normalization
-``X_p = 1`` this is ``C_k - C_p X_k = 0`` for ``k != p``, and ``C_p != 0`` is imposed by the
-Rabinowitsch variable ``mu``: ``1 - mu C_p = 0`` (Cox-Little-O'Shea, Ch. 4 Sect. 4, saturation).
+The closure's chart (:mod:`bonered_alg.declaration.closures`) gives the equations of
+``C = lambda X``; the passive joint variables and the chart's scale variable are eliminated
+(Cox-Little-O'Shea, Ch. 3 Sect. 1, Elimination Theorem).
+
+A leg with a ``mount`` (a pure translation ``T`` in other closures' outputs) is eliminated
+in the mount's frame: its local chain closes on ``X' = conj(T) X``, whose rotation part is
+that of ``X`` (so the chart is unchanged), and the ideal is carried back by substituting
+``X'`` -- a linear change of coordinates, so the substituted generators generate the leg's
+ideal in ``X`` and the inputs.
 """
 
 from __future__ import annotations
 
 import sympy as sp
 
-from ..chains.joints import Leg
-from ..chains.mechanism import Closure, Mechanism
+from ..algebra import study_symbolic as ss
+from ..declaration.closures import MU, Closure
 from .problem import EliminationProblem
 
-MU = sp.Symbol("mu_sat")
+__all__ = ["MU", "closure_equations", "leg_problem", "moved_symbols", "moved_platform"]
 
 
-def closure_equations(chain: tuple[sp.Expr, ...], platform: tuple[sp.Expr, ...]) -> list[sp.Expr]:
-    """``C_k - C_p X_k`` for ``k != p`` and ``1 - mu C_p``, where ``X_p = 1``."""
-    p = next(i for i, c in enumerate(platform) if sp.sympify(c) == 1)
-    eqs = [sp.expand(chain[k] - chain[p] * platform[k]) for k in range(8) if k != p]
-    eqs.append(sp.expand(1 - MU * chain[p]))
-    return [e for e in eqs if e != 0]
+def closure_equations(chain, platform, chart) -> list[sp.Expr]:
+    """The chart's equations of ``chain = lambda * platform``."""
+    return chart.equations(chain, platform)
 
 
-def leg_problem(mech: Mechanism, closure: Closure, leg: Leg) -> EliminationProblem:
-    """The problem eliminating ``leg``'s passive variables (and ``mu``) from its closure."""
-    eqs = closure_equations(leg.product(), closure.platform)
-    syms = leg.free_symbols
+def moved_symbols(closure: Closure) -> tuple[sp.Symbol, ...]:
+    """The platform coordinates in a leg's mount frame (one symbol per Study coordinate)."""
+    return tuple(sp.Symbol(f"m_{k}", real=True)
+                 for k in ("x0", "x1", "x2", "x3", "y0", "y1", "y2", "y3"))
+
+
+def moved_platform(closure: Closure, leg) -> dict[sp.Symbol, sp.Expr]:
+    """``X' = conj(mount) X``: each moved coordinate as a linear form in the platform's."""
+    moved = ss.product(ss.conjugate(tuple(leg.mount)), tuple(closure.platform))
+    return dict(zip(moved_symbols(closure), moved))
+
+
+def leg_problem(mech, closure: Closure, leg) -> EliminationProblem:
+    """The problem eliminating ``leg``'s passive variables (and the chart's scale)."""
+    chart = closure.normalization
+    if leg.mount is None:
+        chain, platform, pose = leg.product(), tuple(closure.platform), tuple(closure.pose)
+        syms = leg.free_symbols
+    else:
+        chain, pose = leg.local_product(), moved_symbols(closure)
+        platform = pose
+        syms = set().union(*(f.free_symbols for f in leg.factors))
+    eqs = closure_equations(chain, platform, chart)
     couplings = [c.equation for c in closure.couplings if c.equation.free_symbols & syms]
     eqs += [sp.expand(c) for c in couplings]
     syms = syms.union(*(c.free_symbols for c in couplings))
@@ -37,10 +58,10 @@ def leg_problem(mech: Mechanism, closure: Closure, leg: Leg) -> EliminationProbl
     geometric = tuple(s for s in mech.geometric if s in syms)
     constants = tuple(c for c in mech.constants if c.symbol in syms)
     eqs += [sp.expand(c.minimal_polynomial) for c in constants]
-    pose = tuple(closure.pose)
+    frame = "" if leg.mount is None else " (in the frame of its mount)"
     return EliminationProblem(
-        context=f"mechanism {mech.name!r}, closure {closure.name!r}, leg {leg.name!r}",
+        context=f"mechanism {mech.name!r}, closure {closure.name!r}, leg {leg.name!r}{frame}",
         equations=tuple(eqs),
-        eliminate=passive + (MU,),
+        eliminate=passive + (chart.scale,),
         keep=pose + active + geometric + tuple(c.symbol for c in constants),
     )

@@ -47,6 +47,16 @@ class Engine(ABC):
     def _lex_basis(self, problem: ParametricProblem, budget_s: float) -> list[list[pt.Term]]:
         """Raw lex basis over Q(parameters), denominators cleared, as terms over ``gens``."""
 
+    @property
+    def identity(self) -> str:
+        """Name, version and method of the engine: the key of its cached results (a new
+        Singular or another sympy method never reuses another's answers)."""
+        cached = getattr(self, "_identity", None)
+        if cached is None:
+            cached = f"{self.name}|{self.version()}"
+            object.__setattr__(self, "_identity", cached)
+        return cached
+
     def _require(self, problem) -> None:
         if not self.available():
             raise EngineUnavailableError(

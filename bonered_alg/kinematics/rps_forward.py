@@ -28,10 +28,7 @@ import sympy as sp
 from ..algebra import convention as cv
 from ..algebra import study_symbolic as ss
 from ..chains.joints import Leg, Role
-from ..chains.mechanism import Closure, Mechanism
 from ..elimination import polyterms as pt
-from ..elimination.cache import lex_basis
-from ..elimination.engines import Engine
 from ..elimination.problem import ParametricProblem
 from ..errors import NonClosingMechanismError
 
@@ -75,14 +72,14 @@ def _split(leg: Leg):
     return moving[0].args[0], q[0], before, after
 
 
-def _reduce_constants(expr: sp.Expr, mech: Mechanism) -> sp.Expr:
+def _reduce_constants(expr: sp.Expr, mech) -> sp.Expr:
     for c in mech.constants:
         if expr.has(c.symbol):
             expr = sp.rem(sp.expand(expr), c.minimal_polynomial, c.symbol)
     return sp.expand(expr)
 
 
-def _clear(expr: sp.Expr, mech: Mechanism, ui: sp.Symbol, uj: sp.Symbol) -> sp.Expr:
+def _clear(expr: sp.Expr, mech, ui: sp.Symbol, uj: sp.Symbol) -> sp.Expr:
     """Numerator of ``expr`` free of the factors ``1 + u^2`` (no real zeros) and of content."""
     num, _ = sp.fraction(sp.cancel(sp.together(expr)))
     num = _reduce_constants(num, mech)
@@ -96,7 +93,7 @@ def _clear(expr: sp.Expr, mech: Mechanism, ui: sp.Symbol, uj: sp.Symbol) -> sp.E
     return sp.expand(primitive.as_expr())
 
 
-def rps_system(mech: Mechanism, closure: Closure) -> RPSSystem | None:
+def rps_system(mech, closure) -> RPSSystem | None:
     """The circle-distance system of ``closure``, or None if it is not a 3-RPS closure."""
     if len(closure.legs) != 3:
         return None
@@ -127,19 +124,17 @@ def rps_system(mech: Mechanism, closure: Closure) -> RPSSystem | None:
                      tuple(platform), tuple(equations), tuple(coefficients))
 
 
-def generic_configuration(system: RPSSystem, mech: Mechanism,
+def generic_configuration(system: RPSSystem, mech,
                           seed: int = 20261122) -> dict[sp.Symbol, sp.Rational]:
     """Rational joints (and the default geometry) for the solution count; fixed seed."""
     rng = random.Random(seed)
-    geometry = {sp.Symbol(p.name, real=True): sp.Rational(str(p.value))
-                for p in mech.parameters.values()}
+    geometry = {p.symbol: sp.Rational(str(p.value)) for p in mech.parameters}
     scale = max([abs(v) for v in geometry.values()] + [1])
     joints = {q: sp.Rational(rng.randint(900, 1400), 1000) * scale for q in system.joints}
     return {**geometry, **joints}
 
 
-def count_solutions(system: RPSSystem, mech: Mechanism, engine: Engine, budget_s: float,
-                    use_cache: bool) -> tuple[int, dict]:
+def count_solutions(system: RPSSystem, mech, algebra) -> tuple[int, dict]:
     """Number of complex solutions of ``<e12, e23, e31>`` at a generic rational
     configuration, from the standard monomials of its lex Groebner basis."""
     values = generic_configuration(system, mech)
@@ -149,7 +144,7 @@ def count_solutions(system: RPSSystem, mech: Mechanism, engine: Engine, budget_s
     problem = ParametricProblem(
         f"mechanism {mech.name!r}, {system.closure}: forward-kinematics solution count",
         tuple(eqs) + tuple(sp.expand(c.minimal_polynomial) for c in consts), unknowns, ())
-    result = lex_basis(problem, engine, budget_s, use_cache)
+    result = algebra.lex_basis(problem)
     n = len(unknowns)
     leading = [max(e[:n] for e, _ in p) for p in result.basis]
     count = pt.count_standard_monomials(leading, n)

@@ -17,24 +17,19 @@ corner ``A_k``, the active stroke ``q_k``, a spherical joint at the platform cor
 ``B_k``.  Its elimination ideal in the platform's Study coordinates is the leg-length
 sphere; the IK takes the positive root (mode 0).
 
-* The papers print no equation for the Stewart platform, so there is nothing to verify
-  against them; the generated functions are checked against an independent numeric model
-  (``tests/test_stewart.py``).
-* The joint angles limited to +-20 deg are read as the angle between the leg and its
-  direction at the homing pose (x = y = 0, z = 210 mm, 001 Table 1), at both ends.
+The papers print no equation for the Stewart platform (``papers/stewart_reference.py``
+records that); the generated functions are checked against an independent numeric model
+(``tests/test_stewart.py``).
 """
 
 from __future__ import annotations
 
-import networkx as nx
 import sympy as sp
 
 from ..algebra import study_symbolic as ss
-from ..chains.mechanism import Closure, Constant, Mechanism, Parameter, joint, leg
+from ..declaration import Closure, Constant, Limit, Parameter, PoseMap, Role, declare, joint, leg
 
 NAME = "stewart"
-SOURCE = ("000_c0528de5aff00fc3.txt Sect. 5 (Table 1) and 001_5ecc975eb69feb79.txt Sect. 3 "
-          "(comparison Stewart platform; layout chosen here, see the module docstring)")
 
 R = {"real": True}
 ra, rb, ta, tb = sp.symbols("ra rb ta tb", **R)
@@ -44,16 +39,6 @@ U = [sp.symbols(f"u{k}1 u{k}2", **R) for k in range(1, 7)]
 E = [sp.symbols(f"e{k}_0:4", **R) for k in range(1, 7)]
 PX = sp.symbols("x_1 x_2 x_3 y_0 y_1 y_2 y_3", **R)
 
-PARAMETERS: dict[str, Parameter] = {
-    "ra": Parameter("ra", 200.0, "mm", "circumradius of the base joints",
-                    "001 Sect. 3: rings of 400 mm diameter"),
-    "rb": Parameter("rb", 200.0, "mm", "circumradius of the platform joints",
-                    "001 Sect. 3: rings of 400 mm diameter"),
-    "ta": Parameter("ta", 0.125, "1", "tan(phi_a/2): the base joints of a pair sit at "
-                    "theta_j +- phi_a on the ring", "layout chosen here (not in 000 or 001)"),
-    "tb": Parameter("tb", 0.125, "1", "tan(phi_b/2): the platform joints of a pair sit at "
-                    "theta_j + 60 deg +- phi_b", "layout chosen here (not in 000 or 001)"),
-}
 LIMITS = {  # 001 Sect. 3
     "q": (160.0, 320.0),
     "joint_deg": (-20.0, 20.0),
@@ -62,16 +47,7 @@ HOME = (0.0, 0.0, 210.0, 0.0, 0.0, 0.0)  # 001 Table 1, homing position
 
 x, y, z, alpha, beta, gamma = sp.symbols("x y z alpha beta gamma", **R)
 POSE = (x, y, z, alpha, beta, gamma)
-POSE_UNITS = ("mm", "mm", "mm", "rad", "rad", "rad")
 JOINTS = Q
-JOINT_UNITS = ("mm",) * 6
-FORWARD_KINEMATICS_PENDING = (
-    "the forward kinematics of the general 6-6 Stewart platform has 40 complex solutions; "
-    "it is not needed for the workspace comparison (issue 4) and not generated")
-POSE_TO_STUDY_SOURCE = "R = Rz(gamma) Ry(beta) Rx(alpha), translation (x, y, z); chart x0 = 1"
-STUDY_TO_POSE = dict(zip(POSE, ss.pose_from_study((1, *PX))))
-
-SQRT3 = Constant(s3, s3**2 - 3, sp.sqrt(3), "sqrt(3) of the three-fold layout")
 
 # cos and sin of theta_j = -30, 90, 210 deg
 _THETA = [(s3 / 2, -sp.Rational(1, 2)), (sp.Integer(0), sp.Integer(1)),
@@ -110,46 +86,25 @@ def corners() -> tuple[list, list]:
     return base, plat
 
 
-def _legs(name: str = NAME):
-    from ..chains.joints import Role
-
+def _legs():
     base, plat = corners()
     out = []
     for k in range(6):
         lab = f"L{k + 1}"
         out.append(leg(
             lab,
-            joint(name, "offset", f"{lab}.A", vector=base[k],
+            joint(NAME, "offset", f"{lab}.A", vector=base[k],
                   description=f"base corner A{k + 1}"),
-            joint(name, "universal", f"{lab}.U", ("x", "y"), U[k], Role.PASSIVE,
+            joint(NAME, "universal", f"{lab}.U", ("x", "y"), U[k], Role.PASSIVE,
                   "passive universal joint at the base"),
-            joint(name, "prismatic", f"{lab}.q", "z", Q[k], Role.ACTIVE,
+            joint(NAME, "prismatic", f"{lab}.q", "z", Q[k], Role.ACTIVE,
                   f"active stroke {Q[k]}"),
-            joint(name, "spherical", f"{lab}.S", E[k], Role.PASSIVE,
+            joint(NAME, "spherical", f"{lab}.S", E[k], Role.PASSIVE,
                   f"passive spherical joint B{k + 1}"),
-            joint(name, "offset", f"{lab}.B", vector=tuple(-c for c in plat[k]),
+            joint(NAME, "offset", f"{lab}.B", vector=tuple(-c for c in plat[k]),
                   description=f"from B{k + 1} to the platform origin"),
         ))
-    return out
-
-
-def _topology() -> nx.MultiGraph:
-    gr = nx.MultiGraph()
-    for k in range(1, 7):
-        gr.add_edge("base", f"cyl{k}", joint="universal", label=f"A{k}")
-        gr.add_edge(f"cyl{k}", f"rod{k}", joint="prismatic", label=f"q{k}")
-        gr.add_edge(f"rod{k}", "platform", joint="spherical", label=f"B{k}")
-    return gr
-
-
-def build() -> Mechanism:
-    closure = Closure("6-UPS Stewart platform", "P", tuple(_legs()), (1, *PX), PX,
-                      note="the platform in the base frame, chart x0 = 1 (no half-turns)")
-    passive = tuple(u for pair in U for u in pair) + tuple(e for es in E for e in es)
-    return Mechanism(
-        name=NAME, title="Stewart platform (6-UPS), comparison mechanism", source=SOURCE,
-        parameters=dict(PARAMETERS), active=JOINTS, passive=passive, closures=(closure,),
-        topology=_topology(), constants=(SQRT3,))
+    return tuple(out)
 
 
 _HALVES = dict(zip(sp.symbols("t_alpha t_beta t_gamma", **R),
@@ -162,7 +117,7 @@ def _pose_study() -> tuple:
                       ss.rotation("y", tb), ss.rotation("x", ta))
 
 
-def pose_to_study(deriv) -> dict:
+def pose_to_study(_derivation) -> dict:
     """Study coordinates PX (chart x0 = 1) of the pose, rational in the tan-half-angles."""
     st = _pose_study()
     return {s: (st[i + 1] / st[0]).subs(_HALVES) for i, s in enumerate(PX)}
@@ -181,13 +136,15 @@ def _leg_vectors(pose_subs: dict | None = None) -> tuple[list[sp.Matrix], sp.Mat
     return out, rot
 
 
-def limits(deriv) -> list[tuple]:
-    """Strokes 160-320 mm and joint angles +-20 deg at both ends (001 Sect. 3)."""
+def limits(_derivation) -> list[Limit]:
+    """Strokes 160-320 mm and joint angles +-20 deg at both ends (001 Sect. 3), read as the
+    angle between the leg and its direction at the homing pose (x = y = 0, z = 210 mm,
+    001 Table 1)."""
     home = dict(zip(POSE, HOME))
     vecs, rot = _leg_vectors()
     home_vecs, _ = _leg_vectors(home)
     lo, hi = LIMITS["q"]
-    out = [(str(q), q, lo, hi, "stroke", "mm", "001 Sect. 3") for q in JOINTS]
+    out = [Limit(str(q), q, lo, hi, "stroke", "mm", "001 Sect. 3") for q in JOINTS]
     a_hi = sp.rad(LIMITS["joint_deg"][1])  # |angle| <= 20 deg: the angle is >= 0
     for k, (v, h) in enumerate(zip(vecs, home_vecs), 1):
         h = h.subs(s3, sp.sqrt(3))
@@ -195,22 +152,44 @@ def limits(deriv) -> list[tuple]:
         n, hn = sp.sqrt(v.dot(v)), sp.sqrt(h.dot(h))
         # base end: the leg against its homing direction; platform end: the same, seen from
         # the platform (R^T v against the homing direction, R = I at home)
-        out.append((f"phi_u{k}", sp.acos(v.dot(h) / (n * hn)), 0, a_hi, "passive", "rad",
-                    "001 Sect. 3: joint A_k, angle to the homing direction"))
-        out.append((f"phi_s{k}", sp.acos((rot.T * v).dot(h) / (n * hn)), 0, a_hi, "passive",
-                    "rad", "001 Sect. 3: joint B_k, angle to the homing direction"))
+        out.append(Limit(f"phi_u{k}", sp.acos(v.dot(h) / (n * hn)), 0, a_hi, "passive", "rad",
+                         "001 Sect. 3: joint A_k, angle to the homing direction"))
+        out.append(Limit(f"phi_s{k}", sp.acos((rot.T * v).dot(h) / (n * hn)), 0, a_hi,
+                         "passive", "rad", "001 Sect. 3: joint B_k, angle to the homing "
+                         "direction"))
     return out
 
 
-def verify(deriv) -> list:
-    """No printed equation: the dimensions are inputs (000 Table 1, 001 Sect. 3)."""
-    from ..verification import Verdict
-
-    return [Verdict("001 Sect. 3", "Stewart platform dimensions: rings of 400 mm, strokes "
-                    "160-320 mm, joints +-20 deg", "not-checkable", None,
-                    "inputs of the comparison; the joint layout is not given in 000 or 001 "
-                    "and is chosen here (module docstring)"),
-            Verdict("000 Table 1", "Stewart platform dimensions: ra = rb = 190 mm, strokes "
-                    "175-250 mm", "not-checkable", None,
-                    "the alternative dimensioning of 000; pass ra=190, rb=190 to the generated "
-                    "functions (the stroke limits in LIMITS are 001's)")]
+MECHANISM = declare(
+    name=NAME,
+    title="Stewart platform (6-UPS), comparison mechanism",
+    source="000_c0528de5aff00fc3.txt Sect. 5 (Table 1) and 001_5ecc975eb69feb79.txt Sect. 3 "
+           "(comparison Stewart platform; layout chosen here, see the module docstring)",
+    summary="The 6-UPS Stewart platform that 000 Sect. 5 and 001 Sect. 3 compare the hybrid "
+            "mechanisms with: rings of 400 mm diameter, strokes 160-320 mm, joints within "
+            "+-20 deg (001 Sect. 3); the semi-regular hexagonal layout, which neither paper "
+            "gives, has the joint spacing as parameters ta = tb = tan(phi/2).",
+    parameters=(
+        Parameter("ra", 200.0, "mm", "circumradius of the base joints",
+                  "001 Sect. 3: rings of 400 mm diameter"),
+        Parameter("rb", 200.0, "mm", "circumradius of the platform joints",
+                  "001 Sect. 3: rings of 400 mm diameter"),
+        Parameter("ta", 0.125, "1", "tan(phi_a/2): the base joints of a pair sit at "
+                  "theta_j +- phi_a on the ring", "layout chosen here (not in 000 or 001)"),
+        Parameter("tb", 0.125, "1", "tan(phi_b/2): the platform joints of a pair sit at "
+                  "theta_j + 60 deg +- phi_b", "layout chosen here (not in 000 or 001)")),
+    constants=(Constant(s3, s3**2 - 3, sp.sqrt(3), "sqrt(3) of the three-fold layout"),),
+    joints=JOINTS,
+    joint_units=("mm",) * 6,
+    closures=(Closure("6-UPS Stewart platform", "P", _legs(), (1, *PX), PX,
+                      note="the platform in the base frame, chart x0 = 1 (no half-turns)"),),
+    pose=PoseMap(POSE, ("mm", "mm", "mm", "rad", "rad", "rad"), pose_to_study,
+                 end_effector=ss.study_from_pose(*POSE),
+                 description="R = Rz(gamma) Ry(beta) Rx(alpha), translation (x, y, z); chart "
+                             "x0 = 1"),
+    forward_kinematics="the forward kinematics of the general 6-6 Stewart platform has 40 "
+                       "complex solutions; it is not needed for the workspace comparison "
+                       "(issue 4) and not generated",
+    limits=limits,
+    checks="bonered_alg.papers.stewart_reference",
+)

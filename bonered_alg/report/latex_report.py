@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from ..codegen.kernels import kernel
+from ..chains.topology import loops, mobility_counts, topology
 from ..kinematics.rps_forward import DEGREE_BOUND, PAIRS
 from .latex_util import broken_math, latex, tex_escape, texttt
 
@@ -36,33 +36,49 @@ def _study(point) -> str:
 
 def _section_mechanism(d) -> list[str]:
     m = d.mechanism
-    intro = (d.module.__doc__ or "").strip().split("\n\n")[0]
-    out = [r"\section{Mechanism}", tex_escape(" ".join(intro.split())), "",
+    out = [r"\section{Mechanism}", tex_escape(" ".join(m.summary.split())), "",
            f"Source: {tex_escape(m.source)}.", "",
            r"\subsection{Geometric parameters}",
            r"\begin{longtable}{llp{0.45\textwidth}p{0.22\textwidth}}\toprule",
            r"name & value & meaning & value source\\\midrule"]
-    for p in m.parameters.values():
-        val = "---" if p.value is None else f"{p.value:g} {tex_escape(p.unit)}"
-        out.append(f"${latex(sp.Symbol(p.name))}$ & {val} & {tex_escape(p.description)} & "
+    for p in m.parameters:
+        val = f"{p.value:g} {tex_escape(p.unit)}"
+        out.append(f"${latex(p.symbol)}$ & {val} & {tex_escape(p.description)} & "
                    f"{tex_escape(p.source)}\\\\")
+    graph = topology(m.closures)
     out += [r"\bottomrule\end{longtable}", r"\subsection{Topology}",
-            "Bodies and joints (a networkx multigraph):", r"\begin{itemize}"]
-    for a, b, data in sorted(m.topology.edges(data=True), key=lambda e: (e[2]["label"], e[0])):
+            "Bodies and joints, derived from the legs (a networkx multigraph):",
+            r"\begin{itemize}"]
+    for a, b, data in sorted(graph.edges(data=True), key=lambda e: (e[2]["label"], e[0])):
         label = tex_escape(data['label'])
         out.append(rf"\item {tex_escape(data['joint'])} joint \texttt{{{label}}}"
                    f" between {tex_escape(a)} and {tex_escape(b)}")
     out.append(r"\end{itemize}")
-    loops = "; ".join("(" + ", ".join(loop) + ")" for loop in m.loops())
-    out.append(f"Independent loops (cycle basis): {tex_escape(loops)}.")
-    n = m.topology.number_of_nodes()
-    j = m.topology.number_of_edges()
-    lam = 3 if m.planar else 6
-    out.append(
-        rf"Kutzbach--Gr\"ubler mobility: $M = {lam}(n-1-j) + \sum f_i - c = {lam}({n}-1-{j}) + "
-        rf"\sum f_i - {m.extra_constraints} = {m.mobility()}$, where $c = {m.extra_constraints}$ "
-        f"counts {tex_escape(m.extra_constraints_note)}; the active joints are "
-        + ", ".join(f"${latex(q)}$" for q in m.active) + ".")
+    cycles = "; ".join("(" + ", ".join(loop) + ")" for loop in loops(graph))
+    out.append(f"Independent loops (cycle basis): {tex_escape(cycles)}.")
+    counts = mobility_counts(m.closures)
+    rows = []
+    for c in counts:
+        rows.append(f"{tex_escape(c.closure)}: $M = {c.formula()}$"
+                    + (f" ($c = {c.extra_constraints}$: {tex_escape(c.note)})"
+                       if c.extra_constraints else ""))
+    out.append(r"Kutzbach--Gr\"ubler mobility $M = \lambda(n-1-j) + \sum f_i - c$, per closure "
+               r"($\lambda = 3$ for planar, 6 for spatial loops): " + "; ".join(rows)
+               + f"; in all $M = {sum(c.mobility for c in counts)}$. The active joints are "
+               + ", ".join(f"${latex(q)}$" for q in m.active) + ".")
+    driven = [c for c in m.closures if c.driven]
+    for c in driven:
+        out.append(f"The {tex_escape(c.name)} is driven by "
+                   + ", ".join(f"${latex(s)}$" for s in c.inputs)
+                   + " (outputs of the other closures): its ideal is derived and generated, "
+                   "not counted here.")
+    helical = [j for c in m.closures for leg in c.legs for j in leg.joints if j.coupling]
+    for j in helical:
+        out.append(f"Helical joint {tex_escape(j.label)}: the ideal carries its turn "
+                   f"${latex(j.coupling.rotation)}$ and slide ${latex(j.coupling.translation)}$"
+                   " as a cylindrical joint (one more freedom than the joint has); the relation "
+                   f"${latex(j.coupling.translation)} = {latex(j.coupling.pitch)}\\,\\theta$ "
+                   "is applied to the recovered joint values.")
     return out
 
 
@@ -113,6 +129,11 @@ def _section_elimination(d) -> list[str]:
         if r.certificate:
             out += _distance_leg(r)
             continue
+        if r.leg.mount is not None:
+            out.append("The leg is mounted on a moving frame, $"
+                       + _study(r.leg.mount) + "$; it is eliminated in that frame (platform "
+                       r"coordinates $X' = \overline{T}X$, a linear change of coordinates) "
+                       "and its generators carried back.")
         out.append(f"Closure equations ({len(p.equations)}):")
         for k, e in enumerate(p.equations, 1):
             out.append(broken_math(f"e_{{{k}}}", e))
@@ -123,6 +144,10 @@ def _section_elimination(d) -> list[str]:
             f"{r.result.dimension} in {len(p.keep)} variables."]
         for k, g in enumerate(r.result.generators, 1):
             out.append(broken_math(f"g_{{{k}}}", g))
+        if r.leg.mount is not None:
+            out.append("In the platform's coordinates and the inputs:")
+            for k, g in enumerate(r.generators, 1):
+                out.append(broken_math(f"g_{{{k}}}", g))
     return out
 
 
@@ -182,8 +207,7 @@ def _section_ik(d) -> list[str]:
            r"the sign is the working mode of that step ($+$: mode bit 0). "
            f"Number of working modes: {d.modes}. Pose coordinates: "
            + ", ".join(_pose_map_entry(k, v) for k, v in d.pose_to_study.items())
-           + " (" + tex_escape(getattr(d.module, "POSE_TO_STUDY_SOURCE",
-                                       "004 eq. 13 with x = [1:0:0:0]")) + ")."]
+           + " (" + tex_escape(d.mechanism.pose.description) + ")."]
     for s in d.steps:
         out.append(rf"\paragraph{{Joint ${latex(s.joint)}$}} from {tex_escape(s.source)}, "
                    f"degree {s.degree}:")
@@ -206,13 +230,13 @@ def _section_fk(d) -> list[str]:
            "back-substitution; denominators are cleared and each generator is made primitive. "
            "Where a leading coefficient of the basis vanishes for particular joint values, the "
            "specialization of the basis is not valid there (the analogue of the divisions "
-           "noted in 004 Sect. 3.3); the generated \texttt{fk} reports such points as "
+           "noted in 004 Sect. 3.3); the generated \\texttt{fk} reports such points as "
            "failures rather than returning values."]
     total = 1
     for f in d.fk:
         total *= f.solutions or 0
         out.append(rf"\subsection{{{tex_escape(f.closure)}}}")
-        if f.rps is not None:
+        if f.system is not None:
             out += _rps_fk(f)
             continue
         out.append("Unknowns " + ", ".join(f"${latex(u)}$" for u in f.problem.unknowns)
@@ -231,7 +255,7 @@ def _section_fk(d) -> list[str]:
 
 def _rps_fk(f) -> list[str]:
     """The 3-RPS closure's forward kinematics (kinematics/rps_forward.py)."""
-    r = f.rps
+    r = f.system
     u = ", ".join(f"${latex(a)}$" for a in r.angles)
     out = [
         "A 3-RPS closure: each leg's revolute joint (" + u + ", tangents of the half "
@@ -313,13 +337,52 @@ def _section_velocity(d) -> list[str]:
             out.append(broken_math(name, f))
         if not s.factors:
             out.append("(none: never singular).")
-        notes = getattr(d.module, "SINGULARITY_NOTES", {})
+        notes = d.mechanism.singularity_notes
         if s.name in notes:
             out.append(tex_escape(notes[s.name]))
     return out
 
 
-def _section_verification(d) -> list[str]:
+def _section_passive(d) -> list[str]:
+    """How each leg's passive joints follow from the pose (kinematics/passive.py)."""
+    from ..kinematics.passive import LinearStep, QuadraticStep
+
+    if not d.passive:
+        return []
+    out = [r"\section{Passive joints}",
+           "Each passive joint variable is recovered from the pose and the actuated joints "
+           "(the generated \\texttt{passive\\_joints}): from generators of the leg's closure "
+           "ideal linear in it (several candidates; per configuration the one with the "
+           "largest relative pivot), from a quadratic (the root of smaller magnitude, the "
+           "joint within 90 degrees of its zero), or, for a spherical joint, as the rotation "
+           r"that remains, $\overline{B} X \overline{A}$ for the factors $B$ before and $A$ "
+           "after it.",
+           r"\begin{longtable}{lp{0.75\textwidth}}\toprule leg & recovery\\\midrule"]
+    for r in d.passive:
+        if r.note:
+            out.append(f"{tex_escape(r.leg)} & not recovered: {tex_escape(r.note)}\\\\")
+            continue
+        parts = []
+        for st in r.steps:
+            if isinstance(st, LinearStep):
+                parts.append(f"${latex(st.variable)}$ (linear, {len(st.candidates)} "
+                             "candidate" + ("s" if len(st.candidates) > 1 else "") + ")")
+            elif isinstance(st, QuadraticStep):
+                parts.append(f"${latex(st.variable)}$ (quadratic)")
+            else:
+                parts.append("$" + ", ".join(latex(v) for v in st.variables)
+                             + "$ (spherical)")
+        out.append(f"{tex_escape(r.leg)} & " + "; ".join(parts) + r"\\")
+    out.append(r"\bottomrule\end{longtable}")
+    if d.mechanism.pose.end_effector is not None:
+        out.append("The end effector's spatial twist $(\\omega; v) = (\\dot g g^{-1})^\\vee$ "
+                   "follows from the derivative of its Study point (\\texttt{pose\\_twist}); "
+                   "with the inverse of $\\partial q/\\partial X$ it maps joint rates to the "
+                   "twist (\\texttt{twist\\_jacobian}).")
+    return out
+
+
+def section_verification(verdicts) -> list[str]:
     out = [r"\section{Verification against the paper}",
            "One row per printed equation or table row. Verdicts: confirmed symbolically "
            "(identity proven by computer algebra), confirmed numerically (max error given), "
@@ -328,12 +391,12 @@ def _section_verification(d) -> list[str]:
            r"\begin{longtable}{p{0.17\textwidth}p{0.2\textwidth}p{0.13\textwidth}"
            r"p{0.4\textwidth}}\toprule",
            r"reference & quantity & verdict & detail\\\midrule\endhead"]
-    for v in d.verification:
+    for v in verdicts:
         err = "" if v.max_error is None else f" (max error {v.max_error:.2e})"
         out.append(f"{tex_escape(v.ref)} & {tex_escape(v.quantity)} & "
                    f"{VERDICT_TEX[v.verdict]}{err} & {texttt(v.detail)}\\\\")
     out.append(r"\bottomrule\end{longtable}")
-    errata = [v for v in d.verification if v.verdict == "erratum" and v.evidence]
+    errata = [v for v in verdicts if v.verdict == "erratum" and v.evidence]
     if errata:
         out.append(r"\subsection{Evidence for the errata}")
         for v in errata:
@@ -344,33 +407,33 @@ def _section_verification(d) -> list[str]:
 
 
 def _section_interpretation(d) -> list[str]:
-    doc = d.module.__doc__ or ""
-    bullets = [b.strip().replace("\n", " ") for b in doc.split("\n* ")[1:]]
-    if not bullets:
+    notes = d.mechanism.reading_notes
+    if not notes:
         return []
     out = [r"\section{Reading of the source text}", r"\begin{itemize}"]
-    out += [rf"\item {tex_escape(' '.join(b.split()))}" for b in bullets]
+    out += [rf"\item {tex_escape(' '.join(b.split()))}" for b in notes]
     out.append(r"\end{itemize}")
     return out
 
 
-def render_report(d) -> str:
-    """The complete ``.tex`` source."""
+def render_report(record) -> str:
+    """The complete ``.tex`` source of a derivation record."""
+    from ..pipeline.stages import report_sections
+
+    d, gm = record.derivation, record.generated
     m = d.mechanism
-    ops = sum(kernel("_k", list(s.generator.free_symbols), [s.A, s.B, s.C], "").operations
-              for s in d.steps)
+    ik_ops = sum(v for k, v in gm.operations.items() if k.startswith("_step"))
     body = [PREAMBLE, r"\title{" + tex_escape(m.title) + r": derivation report}",
             r"\author{bonered\_alg (generated by \texttt{make derive})}", r"\date{}",
             r"\begin{document}", r"\maketitle",
             f"Derivation hash: \\texttt{{{d.derivation_hash}}}. Generated module: "
-            f"\\texttt{{generated/{tex_escape(m.name)}.py}} (IK kernels: {ops} operations "
-            "after common-subexpression elimination).", ""]
+            f"\\texttt{{generated/{tex_escape(m.name)}.py}} ({gm.total_operations} operations "
+            f"after common-subexpression elimination, {ik_ops} of them in the IK steps).", ""]
     for part in (_section_mechanism, _section_chains, _section_elimination, _section_ik,
-                 _section_fk, _section_velocity):
+                 _section_fk, _section_velocity, _section_passive):
         body += part(d)
-    if hasattr(d.module, "report_sections"):
-        body += d.module.report_sections(d)
-    for part in (_section_verification, _section_interpretation):
-        body += part(d)
+    body += report_sections(d, record.studies)
+    body += section_verification(record.verification)
+    body += _section_interpretation(d)
     body.append(r"\end{document}")
     return "\n".join(body) + "\n"

@@ -1,3 +1,4 @@
-"""Workspace analysis from the generated modules (issue 4): grids, membership, chunked and
-parallel scans, coordinate ranges by boundary search, plots, and the papers' comparisons
-of the hybrid mechanisms with the Stewart platform (:mod:`.bone_reduction`)."""
+"""Workspace analysis from the generated modules: grids, membership, chunked and parallel
+scans, coordinate ranges by boundary search, paths and plots.  Generic: it reads the
+generated modules only, and imports neither sympy nor the report (the papers' comparisons
+with the Stewart platform are ``bonered_alg.studies.bone_reduction``)."""

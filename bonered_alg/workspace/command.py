@@ -7,7 +7,6 @@ import io
 import itertools
 import math
 import sys
-from pathlib import Path
 
 import numpy as np
 
@@ -164,11 +163,3 @@ def _dask_client(address: str):
     from dask.distributed import Client
 
     return Client(address)
-
-
-def comparison(args) -> int:
-    from .comparison_report import write
-
-    written = write(Path(args.root).resolve(), args.workers, args.force)
-    print("comparison: " + (", ".join(p.name for p in written) if written else "up to date"))
-    return 0

@@ -21,13 +21,12 @@ import numpy as np
 
 from ..fileio import atomic_write_text
 from ..report.latex_util import tex_escape
+from ..workspace.membership import load_module
+from ..workspace.plots import joint_paths, overlay, singular_slice
 from . import bone_reduction as br
-from .membership import load_module
-from .plots import joint_paths, overlay, singular_slice
 
 STEM = "bone_reduction_workspace"
 MECHANISMS = ("planar_tripod", "tripod_planar", "stewart")
-PACKAGE = Path(__file__).resolve().parent
 
 SETUP_GAPS = {
     "stewart": "the joint layout on the rings is not given in 000 or 001 (here tan(phi/2) = "
@@ -45,9 +44,11 @@ SETUP_GAPS = {
 
 
 def comparison_hash() -> str:
-    h = hashlib.sha256()
-    for path in sorted(PACKAGE.glob("*.py")):
-        h.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    """The hash of this study's code (its import closure) and of the three generated
+    modules it scans."""
+    from ..pipeline.provenance import derivation_hash
+
+    h = hashlib.sha256(derivation_hash(__name__, "comparison", extra_roots=()).encode())
     for name in MECHANISMS:
         h.update(f"{name}={load_module(name).DERIVATION_HASH}\n".encode())
     return h.hexdigest()

@@ -30,10 +30,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .grid import Axis, Grid, fixed_from_user
-from .membership import DEFAULT_CRITERIA, Criteria, load_module
-from .ranges import coordinate_range
-from .scan import ScanResult, scan
+from ..workspace.grid import Axis, Grid, fixed_from_user
+from ..workspace.membership import DEFAULT_CRITERIA, Criteria, load_module
+from ..workspace.ranges import coordinate_range
+from ..workspace.scan import ScanResult, scan
 
 DEG = math.pi / 180
 
@@ -280,7 +280,7 @@ D_STUDY = tuple(float(d) for d in range(0, 101, 1))  # mm, height of the planar 
 
 def path_001(samples_per_step: int = PATH_SAMPLES) -> tuple[np.ndarray, np.ndarray]:
     """Times and paper coordinates of the 001 Sect. 4.2 path (angles in rad)."""
-    from .trajectory import stepwise_path
+    from ..workspace.trajectory import stepwise_path
 
     steps = [{i: (math.radians(v) if i >= 3 else v) for i, v in s.items()} for s in PATH_001]
     return stepwise_path([*HOMING, 0.0, 0.0, 0.0], steps, samples_per_step)
@@ -291,7 +291,7 @@ def trajectory_001(samples_per_step: int = PATH_SAMPLES, d: float = 0.0):
     paper's mechanism coordinates, converted with ``pose_from_paper_coordinates``) and for
     ``stewart`` (the same end-effector poses), each step one time unit; ``d`` is the
     hybrid's planar-stage height (not given in 001)."""
-    from .trajectory import follow
+    from ..workspace.trajectory import follow
 
     t, paper = path_001(samples_per_step)
     poses = load_module("tripod_planar").pose_from_paper_coordinates(paper, d=d)
@@ -303,7 +303,7 @@ def d_study_001(samples_per_step: int = PATH_SAMPLES) -> list[dict]:
     """Whether the hybrid follows the 001 path, for each planar-stage height d in
     ``D_STUDY``: with the strokes only (001 Sect. 4.2 checks the input variables) and
     with the spherical-joint range as well."""
-    from .trajectory import follow
+    from ..workspace.trajectory import follow
 
     t, paper = path_001(samples_per_step)
     module = load_module("tripod_planar")
@@ -339,7 +339,7 @@ def singularities_001(workers: int | None = None) -> tuple[list[dict], dict]:
     """For ``tripod_planar``: per grid of ``SING_GRIDS_001``, the reachable samples and, per
     singularity polynomial, the reachable neighbour pairs it separates (``singular_loci``);
     and the 2-D slices (scan, signs) for the plots."""
-    from .singular_loci import crossings, polynomial_signs, signs_on_reachable
+    from ..workspace.singular_loci import crossings, polynomial_signs, signs_on_reachable
 
     module = load_module("tripod_planar")
     rows = []
@@ -364,8 +364,8 @@ def paths_000() -> dict[str, dict]:
     """000 eq. (43) and (44) (t in [0, 2 pi]) for ``planar_tripod`` (z about its mid-stroke
     height, as in its report) and for ``stewart`` with 000 Table 1 (z about its own
     mid-stroke height): can each follow them within its strokes and joint ranges?"""
-    from ..mechanisms.planar_tripod import Z_HOME, trajectory_eq43, trajectory_eq44
-    from .trajectory import follow
+    from ..workspace.trajectory import follow
+    from .trajectories_000 import Z_HOME, trajectory_eq43, trajectory_eq44
 
     t = np.linspace(0.0, 2 * np.pi, PATH_000_SAMPLES)
     setups = table2_setups()

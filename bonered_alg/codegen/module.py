@@ -1,0 +1,498 @@
+"""Assemble a generated numpy module (DESIGN.md section 4) from derived symbolic results.
+
+The module text comes from ``templates/module.py.j2`` (rendered strictly); its kernels from
+:mod:`.kernels` (one common-subexpression elimination per kernel); its algorithms are the
+runtime's (:mod:`bonered_alg.runtime`), which the module imports.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import sympy as sp
+
+from ..declaration.parameters import Parameter
+from ..kinematics.ik_plan import IKStep
+from ..kinematics.rps_forward import DEGREE_BOUND, RPSSystem
+from ..solvers.closures import RPSEliminant
+from .kernels import Kernel, kernel
+from .template import render
+
+
+@dataclass(frozen=True)
+class IKModuleSpec:
+    """Everything a generated IK module needs; symbolic, built by the pipeline."""
+
+    name: str
+    title: str
+    source: str
+    derivation_hash: str
+    generator: str
+    parameters: Sequence[Parameter]
+    pose: Sequence[sp.Symbol]
+    pose_units: Sequence[str]
+    pose_to_study: dict[sp.Symbol, sp.Expr]
+    joints: Sequence[sp.Symbol]
+    joint_units: Sequence[str]
+    steps: Sequence[IKStep]
+    singularities: Sequence[tuple[str, sp.Expr, str]]
+    fk_steps: Sequence[IKStep] = ()
+    fk_unknowns: Sequence[sp.Symbol] = ()
+    study_to_pose: dict[sp.Symbol, sp.Expr] | None = None
+    fk_system: Sequence[sp.Expr] = ()  # leg generators, for Gauss-Newton polishing of fk
+    constants: dict[sp.Symbol, sp.Expr] | None = None  # algebraic constants -> exact values
+    fk_note: str = ""  # why there is no forward kinematics, when there is none
+    # (name, expression in POSE/JOINTS/parameters, lower, upper, kind, unit, source)
+    limits: Sequence[tuple] = ()
+    # mechanism-specific functions of the pose: (name, output names, expressions, doc)
+    pose_functions: Sequence[tuple] = ()
+    # mechanism-specific functions of other inputs: (name, input symbols, output names,
+    # expressions, doc), e.g. the Study point of a platform from the closures' points
+    functions: Sequence[tuple] = ()
+    # a 3-RPS closure solved through its eliminant (kinematics.rps_forward.RPSSystem) and the
+    # closure's Study coordinates (chart x0 = 1), which come first in the arguments of _fk_pose
+    rps: RPSSystem | None = None
+    rps_unknowns: Sequence[sp.Symbol] = ()
+    # passive-joint recovery per leg (kinematics.passive.LegRecovery)
+    passive: Sequence = ()
+    # the end effector's Study point in the pose coordinates (for the twist), or None
+    end_effector: Sequence[sp.Expr] | None = None
+    # helical couplings (chains.joints.HelicalCoupling) of the legs
+    helical: Sequence = ()
+    # unit of each passive joint variable
+    passive_units: dict | None = None
+    # legs of the actuated closures: (closure base body, leg) for the link poses, and the
+    # algebraic constants their factors use
+    link_legs: Sequence = ()
+    link_constants: dict | None = None
+
+
+def _literal(value) -> str:
+    return "None" if value is None else repr(float(value))
+
+
+def _abs(e: sp.Expr) -> sp.Expr:
+    """``|e|`` without sympy's simplification attempts (minutes on large expressions)."""
+    return sp.Integer(0) if e == 0 else sp.Abs(e, evaluate=False)
+
+
+def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
+                         joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol],
+                         sub: dict) -> list:
+    """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21).
+
+    Generator ``k`` involves only joints solved at steps ``<= k``, so ``dG/dq`` in the solve
+    order is lower triangular: ``dq_k/dX = -(dg_k/dX + sum_{j<k} dg_k/dq_j dq_j/dX) / d_k``
+    with the pivot ``d_k = dg_k/dq_k``; ``det Ji = prod d_k``.  The generators are written in
+    the Study coordinates ``sub`` maps to the pose, and ``dg/dX`` is taken by the chain rule,
+    ``sum_i dg/ds_i ds_i/dX``: differentiating the substituted generator instead multiplies
+    out the pose map into every partial (the Stewart platform's kernel was 4x larger).
+    """
+    study = list(sub)
+    ds = [[sp.diff(sub[s], x) for x in pose] for s in study]
+    rows: dict[sp.Symbol, list[sp.Expr]] = {}
+    pivots, scales = [], []
+    for st, g in zip(steps, gens):
+        d = sp.diff(g, st.joint).subs(sub)
+        dgs = [sp.diff(g, s).subs(sub) for s in study]
+        dgx = [sp.Add(*[a * ds[i][m] for i, a in enumerate(dgs) if a != 0 and ds[i][m] != 0])
+               for m in range(len(pose))]
+        row = []
+        for m in range(len(pose)):
+            acc = dgx[m] + sum(sp.diff(g, prev.joint).subs(sub) * rows[prev.joint][m]
+                               for prev in steps[: steps.index(st)])
+            row.append(-acc / d)
+        rows[st.joint] = row
+        pivots.append(d)
+        scales.append(_abs(d) + sum(_abs(e) for e in dgx))
+    return pivots + scales + [e for q in joints for e in rows[q]]
+
+
+def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
+    """The spec with every algebraic constant replaced by its exact value."""
+    c = spec.constants
+
+    def step(st: IKStep) -> IKStep:
+        return IKStep(st.joint, sp.expand(sp.sympify(st.generator).subs(c)), st.degree,
+                      sp.sympify(st.A).subs(c), sp.sympify(st.B).subs(c),
+                      sp.sympify(st.C).subs(c), st.source)
+
+    return IKModuleSpec(
+        **{**spec.__dict__,
+           "steps": [step(st) for st in spec.steps],
+           "fk_steps": [step(st) for st in spec.fk_steps],
+           "fk_system": [sp.sympify(g).subs(c) for g in spec.fk_system],
+           "singularities": [(n, sp.sympify(e).subs(c), m) for n, e, m in spec.singularities],
+           "limits": [(lim[0], sp.sympify(lim[1]).subs(c), *lim[2:]) for lim in spec.limits],
+           "pose_functions": [(f[0], f[1], [sp.sympify(e).subs(c) for e in f[2]], f[3])
+                              for f in spec.pose_functions],
+           "functions": [(f[0], f[1], f[2], [sp.sympify(e).subs(c) for e in f[3]], f[4])
+                         for f in spec.functions],
+           "pose_to_study": {k: sp.sympify(v).subs(c) for k, v in spec.pose_to_study.items()},
+           "study_to_pose": ({k: sp.sympify(v).subs(c) for k, v in spec.study_to_pose.items()}
+                             if spec.study_to_pose else None),
+           "rps": _rps_with_constants(spec.rps, c) if spec.rps else None,
+           "passive": [_recovery_with_constants(r, c) for r in spec.passive],
+           "end_effector": (tuple(sp.sympify(e).subs(c) for e in spec.end_effector)
+                            if spec.end_effector else None),
+           "constants": None})
+
+
+def _recovery_with_constants(rec, c: dict):
+    from dataclasses import replace
+
+    from ..kinematics.passive import LinearStep, QuadraticStep, SphericalStep
+
+    steps = []
+    for st in rec.steps:
+        if isinstance(st, LinearStep):
+            steps.append(LinearStep(st.variable, tuple((sp.sympify(b).subs(c),
+                                                        sp.sympify(k).subs(c))
+                                                       for b, k in st.candidates)))
+        elif isinstance(st, QuadraticStep):
+            steps.append(QuadraticStep(st.variable, tuple(sp.sympify(e).subs(c)
+                                                          for e in st.coefficients)))
+        else:
+            steps.append(SphericalStep(st.variables, tuple(sp.sympify(e).subs(c)
+                                                           for e in st.rotation)))
+    return replace(rec, steps=tuple(steps))
+
+
+def _rps_with_constants(rps: RPSSystem, c: dict) -> RPSSystem:
+    def sub(e):
+        return sp.sympify(e).subs(c)
+
+    return RPSSystem(
+        rps.closure, rps.angles, rps.joints,
+        tuple(tuple(sub(e) for e in p) for p in rps.centres),
+        tuple(tuple(sub(e) for e in p) for p in rps.platform),
+        tuple(sub(e) for e in rps.equations),
+        tuple(tuple(tuple(sub(e) for e in row) for row in m) for m in rps.coefficients))
+
+
+def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
+                  par: Sequence[sp.Symbol], sub: dict) -> tuple[list[Kernel], list[str], list]:
+    """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows."""
+    kernels, rows, mode_bits = [], [], []
+    solved: list[sp.Symbol] = []
+    bit = 0
+    for k, st in enumerate(steps):
+        coeffs = [sp.sympify(c).subs(sub) for c in (st.A, st.B, st.C)]
+        kern = kernel(f"_{prefix}{k}_{st.joint}", [*inputs, *solved, *par], coeffs,
+                      f"Coefficients (A, B, C) of the generator solved for {st.joint} "
+                      f"(from {st.source}).")
+        kernels.append(kern)
+        if st.degree == 2:
+            mode_bits.append((str(st.joint), bit))
+            rows.append(f"    (2, {kern.name}, {bit}),")
+            bit += 1
+        else:
+            rows.append(f"    (1, {kern.name}, None),")
+        solved.append(st.joint)
+    return kernels, rows, mode_bits
+
+
+def _step_rows(prefix_rows: list[str]) -> list[str]:
+    return [r.strip().rstrip(",") for r in prefix_rows]
+
+
+def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
+    """Source text of ``generated/<name>.py`` (deterministic for equal inputs) and the
+    operation count of each kernel."""
+    from .. import runtime
+
+    if spec.constants:
+        spec = _with_constants(spec)
+    par = [sp.Symbol(p.name, real=True) for p in spec.parameters]
+    sub = dict(spec.pose_to_study)
+    study = list(sub)
+    # the pose is converted to Study coordinates once per call; the IK steps are polynomial
+    # in those coordinates
+    kernels = [kernel("_study", [*spec.pose, *par], [sub[y] for y in study],
+                      "Study coordinates STUDY_POSE of the pose (POSE).")]
+    step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {})
+    kernels += step_kernels
+    bit = len(mode_bits)
+    fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
+    kernels += fk_kernels
+    has_fk = bool(spec.fk_steps or spec.rps)
+    if spec.rps:
+        kernels += RPSEliminant().kernels(spec.rps, spec.joints, par)
+    if has_fk:
+        kernels.append(kernel("_fk_pose", [*spec.rps_unknowns, *spec.fk_unknowns, *par],
+                              [spec.study_to_pose[x] for x in spec.pose],
+                              "Pose coordinates (POSE) from the solved Study coordinates."))
+    if spec.fk_steps:
+        system = sp.Matrix(list(spec.fk_system))
+        kernels.append(kernel(
+            "_fk_newton", [*spec.fk_unknowns, *spec.joints, *par],
+            list(system) + list(system.jacobian(sp.Matrix(list(spec.fk_unknowns)))),
+            "Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major)."))
+    gens = [sp.expand(st.generator) for st in spec.steps]
+    args = [*spec.pose, *spec.joints, *par]
+    g_pose = [g.subs(sub) for g in gens]
+    ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
+    jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
+    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, sub)
+    # pivots of linear steps that can vanish (a constant pivot never does)
+    linear = [k for k, st in enumerate(spec.steps)
+              if st.degree == 1 and not sp.diff(gens[k], st.joint).is_number]
+    piv = [sp.diff(gens[k], spec.steps[k].joint) for k in linear]
+    piv_scale = [sp.Abs(pv, evaluate=False) + sum(sp.Abs(sp.diff(gens[k], y)) for y in study)
+                 for k, pv in zip(linear, piv)]
+    if linear:
+        kernels.append(kernel("_pivots", [*study, *spec.joints, *par], piv + piv_scale,
+                              "Pivots dG_k/dq_k of the linear IK steps and their row scales "
+                              "(in Study coordinates)."))
+    kernels.append(kernel("_jac", args, tri,
+                          "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
+                          "substitution: Ji is triangular in the solve order)."))
+    kernels.append(kernel("_ji", args, list(ji), "Input Jacobian dG/dq, row-major."))
+    kernels.append(kernel("_jo_study", args, list(jo_study),
+                          "Output Jacobian dG/dy in Study coordinates, row-major."))
+    if spec.limits:
+        kernels.append(kernel("_limit_values", args, [sp.sympify(lim[1]) for lim in spec.limits],
+                              "Quantities bounded by LIMITS (joint strokes, passive angles)."))
+    pose_functions, functions = [], []
+    for fname, outs, exprs, doc in spec.pose_functions:
+        kern = kernel(f"_pf_{fname}", [*spec.pose, *par], list(exprs), doc)
+        kernels.append(kern)
+        pose_functions.append({"name": fname, "outputs": tuple(outs), "doc": doc,
+                               "kernel": kern.name})
+    for fname, inputs, outs, exprs, doc in spec.functions:
+        kern = kernel(f"_fn_{fname}", [*inputs, *par], list(exprs), doc)
+        kernels.append(kern)
+        functions.append({"name": fname, "inputs": tuple(str(v) for v in inputs),
+                          "outputs": tuple(outs), "doc": doc, "kernel": kern.name})
+    sing_kernels = []
+    for name, expr, meaning in spec.singularities:
+        # in the Study coordinates of the pose (computed once by _study), not in the pose:
+        # composed with the pose map, a large polynomial makes CSE slow and the kernel long
+        expr = sp.sympify(expr)
+        stray = expr.free_symbols - set(study) - set(spec.joints) - set(par)
+        if stray:
+            raise ValueError(f"{spec.name}: singularity {name} has symbols "
+                             f"{sorted(map(str, stray))} outside the Study coordinates, "
+                             "joints and parameters")
+        kern = kernel(f"_sing_{name}", [*study, *spec.joints, *par], [expr], meaning)
+        kernels.append(kern)
+        sing_kernels.append((name, kern.name))
+    passive_table, passive_names, passive_units, passive_notes = _passive_kernels(
+        spec, study, par, kernels)
+    link_rows, link_names, link_frames = _link_kernels(spec, study, par, passive_names,
+                                                       kernels)
+    has_twist = spec.end_effector is not None
+    if has_twist:
+        from ..kinematics.twist import pose_twist
+
+        kernels.append(kernel("_pose_twist", [*spec.pose, *par],
+                              list(pose_twist(spec.end_effector, spec.pose)),
+                              "Spatial twist (omega; v) per unit rate of each pose coordinate, "
+                              "6 x len(POSE) row-major."))
+    helical = [h for h in spec.helical]
+    if helical:
+        known = set(spec.joints) | {sp.Symbol(n, real=True) for n in passive_names}
+        for h in helical:
+            if not {h.rotation, h.translation} <= known:
+                raise ValueError(f"{spec.name}: the helical joint of {h.translation} needs "
+                                 "its turn and slide recovered")
+        kernels.append(kernel(
+            "_helical", [*[sp.Symbol(n, real=True) for n in passive_names], *spec.joints, *par],
+            [h.translation - h.pitch * 2 * sp.atan(h.rotation) for h in helical],
+            "Residuals s - pitch * theta of the helical joints (zero where the algebra's "
+            "cylindrical joint is the helical one)."))
+    total = sum(k.operations for k in kernels)
+    rps_kernels = ("_runtime.RPSKernels(coefficients=_rps_coefficients, "
+                   "equations=_rps_equations, centres=_rps_centres, platform=_rps_platform, "
+                   "study=_rps_study)") if spec.rps else "None"
+    names = ["ik", "ik_all", "ik_status", "ik_and_status", "fk", "fk_status", "jacobian",
+             "jacobian_status", "jacobian_and_status", "input_jacobian", "output_jacobian",
+             "singularities", "limit_values"]
+    if passive_names:
+        names.append("passive_joints")
+    if link_names:
+        names.append("link_poses")
+    if has_twist:
+        names += ["pose_twist", "twist_jacobian"]
+    if helical:
+        names.append("helical_residuals")
+    names += [f["name"] for f in pose_functions + functions]
+    context = {
+        "title": spec.title, "generator": spec.generator,
+        "declaration": f"bonered_alg/mechanisms/{spec.name}.py", "source": spec.source,
+        "derivation_hash": spec.derivation_hash, "total_operations": total,
+        "contract": ", ".join(names), "api_version": runtime.API_VERSION, "name": spec.name,
+        "operations": [(k.name, k.operations) for k in kernels],
+        "parameters": [{"name": p.name, "value": p.value, "unit": p.unit,
+                        "note": p.description + "; " + p.source} for p in spec.parameters],
+        "pose": [str(s) for s in spec.pose], "pose_units": list(spec.pose_units),
+        "study_pose": [str(s) for s in study], "joints": [str(s) for s in spec.joints],
+        "joint_units": list(spec.joint_units), "modes": 2**bit, "mode_bits": tuple(mode_bits),
+        "fk_unknowns": [str(u) for u in spec.fk_unknowns],
+        "rps_unknowns": [str(u) for u in spec.rps_unknowns],
+        "rps_modes": DEGREE_BOUND if spec.rps else 0,
+        "fk_modes": (DEGREE_BOUND if spec.rps else 1) * 2 ** len(fk_bits) if has_fk else 0,
+        "fk_note": spec.fk_note if not has_fk else "", "fk_mode_bits": tuple(fk_bits),
+        "fk_generators": [(str(st.joint), sp.sstr(sp.expand(st.generator)))
+                          for st in spec.fk_steps],
+        "ik_generators": [(str(st.joint), sp.sstr(sp.expand(st.generator)))
+                          for st in spec.steps],
+        "limits": [(lim[0], float(lim[2]), float(lim[3]), lim[4], lim[5], lim[6])
+                   for lim in spec.limits],
+        "singularity_meanings": [(n, m) for n, _, m in spec.singularities],
+        "kernels": kernels, "steps": _step_rows(steps_src), "fk_steps": _step_rows(fk_src),
+        "singularity_kernels": sing_kernels,
+        "solve_index": tuple(list(spec.joints).index(st.joint) for st in spec.steps),
+        "pivots_kernel": "_pivots" if linear else "None",
+        "limit_kernel": "_limit_values" if spec.limits else "None",
+        "rps_kernels": rps_kernels,
+        "fk_index": tuple(list(spec.fk_unknowns).index(st.joint) for st in spec.fk_steps),
+        "fk_newton": "_fk_newton" if spec.fk_steps else "None",
+        "fk_pose": "_fk_pose" if has_fk else "None",
+        "pose_functions": pose_functions, "functions": functions,
+        "passive_names": passive_names, "passive_units": passive_units,
+        "passive_notes": passive_notes, "passive_table": passive_table,
+        "twist_kernel": "_pose_twist" if has_twist else "None",
+        "link_names": link_names, "link_frames": link_frames, "link_kernels": link_rows,
+        "helical": [(str(h.rotation), str(h.translation), sp.sstr(h.pitch)) for h in helical],
+        "helical_kernel": "_helical" if helical else "None",
+    }
+    return render("module.py.j2", context), {k.name: k.operations for k in kernels}
+
+
+def module_source(d, generator: str):
+    """The generated module of derivation ``d`` (:class:`..pipeline.results.GeneratedModule`)."""
+    from ..pipeline.results import GeneratedModule, frozen_map
+
+    m = d.mechanism
+    rps_fk = next((f for f in d.fk if f.system is not None), None)
+    spec = IKModuleSpec(
+        name=m.name, title=m.title, source=m.source, derivation_hash=d.derivation_hash,
+        generator=generator, parameters=list(m.parameters), pose=m.pose.coordinates,
+        pose_units=m.pose.units, pose_to_study=dict(d.pose_to_study), joints=m.joints,
+        joint_units=m.joint_units, steps=list(d.steps),
+        singularities=[(s.name, s.expression if s.evaluate is None else s.evaluate, s.meaning)
+                       for s in d.singularities],
+        fk_steps=[s for f in d.fk for s in f.steps],
+        rps=rps_fk.system if rps_fk else None,
+        rps_unknowns=m.closure_named(rps_fk.closure).pose if rps_fk else (),
+        fk_unknowns=[s.joint for f in d.fk for s in f.steps],
+        fk_system=[g for f in d.fk if f.system is None for g in f.problem.equations],
+        study_to_pose=dict(m.pose.from_study) if m.pose.from_study else None,
+        constants=d.constants, fk_note=d.fk_note,
+        limits=[(lim.name, lim.expression, lim.lower, lim.upper, lim.kind, lim.unit,
+                 lim.source) for lim in d.limits],
+        pose_functions=[(f.name, f.outputs, list(f.expressions), f.doc)
+                        for f in d.pose_functions],
+        functions=[(f.name, f.inputs, f.outputs, list(f.expressions), f.doc)
+                   for f in d.functions],
+        passive=list(d.passive), end_effector=m.pose.end_effector,
+        helical=[h for c in m.actuated_closures for leg in c.legs for h in leg.couplings],
+        passive_units=_passive_units(m),
+        link_legs=[(c.base, leg) for c in m.actuated_closures for leg in c.legs],
+        link_constants=d.constants)
+    source, ops = write_ik_module(spec)
+    return GeneratedModule(m.name, source, frozen_map(ops))
+
+
+def _passive_kernels(spec, study, par, kernels):
+    """Kernels of the passive-joint recovery and the runtime table: per leg, its steps
+    ``(kind, kernel, output indices)`` (``kinematics.passive``).  A candidate generator that
+    uses a Study coordinate the pose map does not give is dropped; a leg left without a
+    complete recovery is reported in PASSIVE_NOTES."""
+    from ..kinematics.passive import LinearStep, QuadraticStep
+
+    names, units, notes, table = [], [], [], []
+    have = set(study) | set(spec.joints) | set(par)
+    for rec in spec.passive:
+        if rec.note:
+            notes.append(f"{rec.leg}: {rec.note}")
+            continue
+        rows, solved, ok, offset = [], [], True, len(names)
+        for st in rec.steps:
+            args = [*study, *spec.joints, *solved, *par]
+            allowed = have | set(solved)
+            if isinstance(st, LinearStep):
+                cands = [(b, c) for b, c in st.candidates
+                         if (sp.sympify(b).free_symbols | sp.sympify(c).free_symbols) <= allowed]
+                if not cands:
+                    ok = False
+                    break
+                kern = kernel(f"_passive_{rec.leg}_{st.variable}", args,
+                              [e for bc in cands for e in bc],
+                              f"Candidates (B, C) of B {st.variable} + C = 0, leg {rec.leg}.")
+                rows.append(("linear", kern, (len(solved),)))
+                solved.append(st.variable)
+            elif isinstance(st, QuadraticStep):
+                if not set().union(*(sp.sympify(e).free_symbols for e in st.coefficients)) \
+                        <= allowed:
+                    ok = False
+                    break
+                kern = kernel(f"_passive_{rec.leg}_{st.variable}", args, list(st.coefficients),
+                              f"(A, B, C) of A {st.variable}^2 + B {st.variable} + C = 0, "
+                              f"leg {rec.leg} (the root of smaller magnitude).")
+                rows.append(("quadratic", kern, (len(solved),)))
+                solved.append(st.variable)
+            else:
+                if not set().union(*(sp.sympify(e).free_symbols for e in st.rotation)) <= allowed:
+                    ok = False
+                    break
+                kern = kernel(f"_passive_{rec.leg}_sphere", args, list(st.rotation),
+                              f"Rotation quaternion (up to scale) of the spherical joint of "
+                              f"leg {rec.leg}.")
+                rows.append(("spherical", kern, tuple(range(len(solved), len(solved) + 4))))
+                solved += list(st.variables)
+        if not ok:
+            notes.append(f"{rec.leg}: a step needs Study coordinates the pose map does not give")
+            continue
+        kernels += [k for _, k, _ in rows]
+        table.append(tuple((kind, k.name, tuple(offset + i for i in idx))
+                           for kind, k, idx in rows))
+        for v in solved:
+            names.append(str(v))
+            units.append((spec.passive_units or {}).get(v, "1"))
+    return table, names, units, notes
+
+
+def _link_kernels(spec, study, par, passive_names, kernels):
+    """One kernel per leg whose joints are all known: the Study point of the body after each
+    moving joint (the partial products of the leg), in the frame of the body the leg's
+    closure stands on.  Returns the runtime table ``(kernel, first link index, count)``,
+    the link names (those of the topology, ``<leg>.<k>``, the last one the platform seen
+    from that leg) and each link's frame."""
+    from ..algebra import study_symbolic as ss
+
+    known = set(spec.joints) | {sp.Symbol(n, real=True) for n in passive_names}
+    psyms = [sp.Symbol(n, real=True) for n in passive_names]
+    rows, names, frames = [], [], []
+    consts = spec.link_constants or {}
+    for base, leg in spec.link_legs:
+        moving = [k for k, j in enumerate(leg.joints) if j.kind != "offset"]
+        if not moving or not leg.free_symbols - set(par) <= known | set(consts):
+            continue
+        outs, labels = [], []
+        for n_body, k in enumerate(moving, 1):
+            factors = [f.study() for j in leg.joints[:k + 1] for f in j.factors]
+            point = ss.product(*factors)
+            outs += [sp.sympify(c).subs(consts) for c in point]
+            labels.append(f"{leg.name}.{n_body}")
+        kern = kernel(f"_links_{leg.name}", [*study, *spec.joints, *psyms, *par], outs,
+                      f"Study points of the bodies of leg {leg.name} (frame {base}).")
+        kernels.append(kern)
+        rows.append((kern.name, len(names), len(labels)))
+        names += labels
+        frames += [base or "base"] * len(labels)
+    return rows, names, frames
+
+
+def _passive_units(mech) -> dict:
+    """The unit of each passive variable, from the kind of the factor it moves."""
+    out = {}
+    for closure in mech.closures:
+        for leg in closure.legs:
+            for f in leg.factors:
+                for v in f.free_symbols:
+                    out.setdefault(v, {"rotation": "1 (tan(theta/2))", "translation": "mm",
+                                       "quaternion": "1 (Euler parameter, normalized)"}[f.kind])
+    return out

@@ -1,0 +1,78 @@
+"""Running the stages: one mechanism in memory (:func:`derive`), or every registered one
+whose outputs are out of date, written to disk (:func:`derive_all`)."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from types import ModuleType
+
+from ..elimination.engines import DEFAULT_BUDGET_S, Engine
+from ..registry import REGISTRY, load, module_path
+from . import outputs, stages
+from .algebra import Algebra
+from .provenance import derivation_hash
+from .results import Derivation, Record, frozen_map
+
+
+def current_hash(target: str | ModuleType) -> str:
+    """The derivation hash of a registered mechanism or of a declaration module."""
+    if isinstance(target, str):
+        return derivation_hash(module_path(target), stages.GENERATOR)
+    file = getattr(target, "__file__", None)
+    return derivation_hash(target.__name__, stages.GENERATOR,
+                           module_file=Path(file) if file else None)
+
+
+def derive(target: str | ModuleType, engine: Engine | None = None,
+           budget_s: float = DEFAULT_BUDGET_S, use_cache: bool = True,
+           algebra: Algebra | None = None) -> Record:
+    """Every stage for one mechanism (registered name, or a declaration module), in memory."""
+    t0 = time.perf_counter()
+    module = load(target) if isinstance(target, str) else target
+    mech = stages.build(module)
+    algebra = algebra or Algebra.default(engine, budget_s, use_cache)
+    d = Derivation(mech, current_hash(target))
+    d = stages.eliminate(d, algebra)
+    d = stages.plan(d, algebra)
+    d = stages.analyse(d, algebra)
+    d = stages.specify(d)
+    t1 = time.perf_counter()
+    gm = stages.import_generated(stages.generate(d))
+    t2 = time.perf_counter()
+    studies = stages.run_studies(d, gm)
+    verdicts = stages.verify(d, gm, studies)
+    t3 = time.perf_counter()
+    d = Derivation(**{**d.__dict__, "timings": frozen_map({
+        **d.timings, "code generation": t2 - t1, "studies and verification": t3 - t2,
+        "total": t3 - t0})})
+    return Record(d, gm, studies, verdicts)
+
+
+def write(record: Record, root: Path) -> list[Path]:
+    """Render every output of ``record``, then write them atomically under ``root``."""
+    return outputs.write(outputs.files(record), root)
+
+
+def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
+               engine: Engine | None = None, log=print) -> dict[str, str]:
+    """Derive and write each mechanism whose outputs are missing or out of date, and the
+    record of the Study-parameter framework (``papers/study_algebra.py``)."""
+    from ..papers import study_algebra
+
+    status = {}
+    if not names:
+        status["study_algebra"] = study_algebra.write_record(root, force, log)
+    for name in names or list(REGISTRY):
+        current = current_hash(name)
+        if not force and outputs.recorded_hash(root, name) == current:
+            log(f"{name}: up to date ({current[:12]})")
+            status[name] = "up to date"
+            continue
+        t0 = time.perf_counter()
+        record = derive(name, engine=engine)
+        changed = write(record, root)
+        log(f"{name}: derived in {time.perf_counter() - t0:.1f} s; wrote "
+            + (", ".join(str(p.relative_to(root)) for p in changed) or "nothing new"))
+        status[name] = "derived"
+    return status

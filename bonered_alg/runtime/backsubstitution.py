@@ -1,0 +1,72 @@
+"""Back-substitution through a table of linear and quadratic steps (IK, FK, passive joints).
+
+A step is ``(degree, kernel, bit)``: the kernel returns the coefficients ``(A, B, C)`` of
+``A x^2 + B x + C`` (``A`` unused for degree 1) from the inputs and the unknowns solved
+before it; ``bit`` is the bit of the mode that selects the ``-sqrt`` root of a quadratic.
+"""
+
+from __future__ import annotations
+
+import numpy
+
+from .status import (
+    DISC_RTOL,
+    INPUT_SINGULAR,
+    INVALID_INPUT,
+    JOINT_AT_INFINITY,
+    NO_REAL_SOLUTION,
+    OK,
+    ON_BOUNDARY,
+)
+
+
+def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False):
+    """Solve ``steps`` in order (linear or quadratic in one unknown each); NaN on failure.
+
+    ``inputs`` has shape (..., n_in); the result has shape (..., n_out) with unknown k at
+    ``indices[k]``, all NaN where any step fails; status codes are computed on request.
+    Quadratic roots are taken in the form that never subtracts nearly equal numbers.
+    """
+    shape = inputs.shape[:-1]
+    cols = [inputs[..., i] for i in range(inputs.shape[-1])]
+    out = numpy.empty(shape + (n_out,))
+    status = numpy.zeros(shape, dtype=numpy.int8) if with_status else None
+    if with_status:
+        status[~numpy.all(numpy.isfinite(inputs), axis=-1)] = INVALID_INPUT
+    solved = []
+    failed = numpy.zeros(shape, dtype=bool)
+    with numpy.errstate(all="ignore"):
+        for (degree, kern, bit), index in zip(steps, indices):
+            a, b, c = kern(*cols, *solved, *par)
+            if degree == 1:
+                root = numpy.asarray(-c / b, dtype=float)
+                bad = ~numpy.isfinite(root)
+                no_real = None
+                pivot_zero = bad & (b == 0)  # det Ji = 0 exactly: an input singularity
+            else:
+                sign = -1.0 if (mode >> bit) & 1 else 1.0
+                bb = b * b
+                disc = bb - 4.0 * a * c
+                ssq = sign * numpy.sqrt(numpy.maximum(disc, 0.0))
+                root = numpy.where(sign * b <= 0.0, (ssq - b) / (2.0 * a), (2.0 * c) / (-b - ssq))
+                no_real = disc < -DISC_RTOL * bb
+                bad = no_real | ~numpy.isfinite(root)
+                pivot_zero = None
+            root = numpy.where(bad, numpy.nan, root)
+            if with_status:
+                new = numpy.where(bad, JOINT_AT_INFINITY, OK)
+                if pivot_zero is not None:
+                    new = numpy.where(pivot_zero, INPUT_SINGULAR, new)
+                if no_real is not None:
+                    new = numpy.where(no_real, NO_REAL_SOLUTION, new)
+                    on_boundary = ~bad & (numpy.abs(disc) <= DISC_RTOL * bb)
+                    new = numpy.where(on_boundary, ON_BOUNDARY, new)
+                # the first failure wins; a failure overrides an earlier ON_BOUNDARY
+                replace = (status == OK) | ((status == ON_BOUNDARY) & bad)
+                status = numpy.where(replace, new, status).astype(numpy.int8)
+            out[..., index] = root
+            solved.append(root)
+            failed |= bad
+    # a configuration is reachable as a whole or not at all: the status says which leg failed
+    out[failed] = numpy.nan
+    return out, status

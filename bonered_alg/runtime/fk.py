@@ -1,0 +1,83 @@
+"""Forward kinematics: every assembly mode, from the closures' solvers.
+
+Closures solved through an eliminant (a 3-RPS closure: :mod:`.rps`) give the outer modes,
+closures with a triangular lex basis the inner ones (one back-substitution for all of them,
+polished by Gauss-Newton steps on the leg generators): mode = r * 2**len(bits) + m.
+"""
+
+from __future__ import annotations
+
+import numpy
+
+from . import rps as rps_solver
+from .backsubstitution import backsubstitute
+from .inputs import columns, stacked
+from .status import INPUT_SINGULAR, OK
+
+
+def polish(spec, q, study, par, iterations=2):
+    """Gauss-Newton steps on the (well-conditioned) leg generators, from the lex-basis
+    solution: ``(J^T J) step = J^T f`` (the plain Newton step when J is square)."""
+    n = len(spec.unknowns)
+    shape = study.shape[:-1]
+    qc = columns(q)
+    for _ in range(iterations):
+        with numpy.errstate(all="ignore"):
+            values = spec.newton(*columns(study), *qc, *par)
+            vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape) for v in values]
+            m = len(vals) // (n + 1)
+            f = numpy.stack(vals[:m], axis=-1)
+            jac = numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n))
+            jtj = numpy.swapaxes(jac, -1, -2) @ jac
+            jtf = numpy.swapaxes(jac, -1, -2) @ f[..., None]
+            ok = numpy.all(numpy.isfinite(jtj), axis=(-2, -1)) & numpy.all(
+                numpy.isfinite(jtf), axis=(-2, -1))
+            ok &= numpy.abs(numpy.linalg.det(numpy.where(ok[..., None, None], jtj,
+                                                         numpy.eye(n)))) > 0.0
+            safe = numpy.where(ok[..., None, None], jtj, numpy.eye(n))
+            step = numpy.linalg.solve(safe, numpy.where(ok[..., None, None], jtf, 0.0))
+        study = numpy.where(ok[..., None], study - step[..., 0], study)
+    return study
+
+
+def input_singular(model, pose, q, par, status):
+    """INPUT_SINGULAR for a real mode at which a pivot of Ji vanishes: the pose solves the
+    closure equations, but the joints do not determine it (e.g. a planar 3-PRP stage turned
+    to its input singularity assembles for any strokes)."""
+    n = len(model.joints)
+    with numpy.errstate(all="ignore"):
+        values = model.jac(*columns(pose), *columns(q), *par)
+        singular = model.pivot_singular(values[:n], values[n:2 * n], status.shape)
+    return numpy.where((status == OK) & singular, INPUT_SINGULAR, status).astype(numpy.int8)
+
+
+def solve_all(model, q, par, with_status):
+    """Poses (..., modes, len(POSE)) and statuses (..., modes) of every assembly mode."""
+    spec = model.fk
+    shape = q.shape[:-1]
+    if spec.rps is not None:
+        rps, rps_status = rps_solver.solve(spec.rps, q, par)
+    else:
+        rps = numpy.zeros(shape + (1, 0))
+        rps_status = numpy.zeros(shape + (1,), dtype=numpy.int8)
+    solved = []  # the back-substitution modes do not depend on the eliminant's mode
+    for m in range(2 ** len(spec.mode_bits)):
+        if spec.steps:
+            study, status = backsubstitute(q, spec.steps, spec.index, len(spec.unknowns), m,
+                                           par, with_status)
+            solved.append((polish(spec, q, study, par), status))
+        else:
+            solved.append((numpy.zeros(shape + (0,)),
+                           numpy.zeros(shape, dtype=numpy.int8) if with_status else None))
+    poses, statuses = [], []
+    for r in range(rps.shape[-2]):
+        for study, status in solved:
+            with numpy.errstate(all="ignore"):
+                values = spec.pose(*[rps[..., r, i] for i in range(rps.shape[-1])],
+                                   *columns(study), *par)
+            poses.append(stacked(values, shape))
+            if with_status:
+                status = numpy.where(rps_status[..., r] != OK, rps_status[..., r], status)
+                statuses.append(input_singular(model, poses[-1], q, par, status))
+    return (numpy.stack(poses, axis=-2),
+            numpy.stack(statuses, axis=-1) if with_status else None)

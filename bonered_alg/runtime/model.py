@@ -1,0 +1,384 @@
+"""The numeric model behind a generated module: its tables, its kernels, and every public
+function of the generated-module contract (DESIGN.md section 4).
+
+A generated module builds one :class:`Model` from its tables and kernels and exposes thin
+wrappers around its methods; the algorithms live here, once, linted and unit-tested.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy
+
+from . import fk as fk_solver
+from . import inputs as check
+from .backsubstitution import backsubstitute
+from .inputs import columns, stacked
+from .status import (
+    DET_RTOL,
+    INPUT_SINGULAR,
+    INVALID_INPUT,
+    OK,
+    ON_BOUNDARY,
+    PASSIVE_JOINT_LIMIT,
+    STROKE_LIMIT,
+)
+
+Kernel = Callable[..., tuple]
+
+
+@dataclass(frozen=True)
+class RPSKernels:
+    """Kernels of a 3-RPS closure solved through its eliminant (:mod:`.rps`)."""
+
+    coefficients: Kernel
+    equations: Kernel
+    centres: Kernel
+    platform: Kernel
+    study: Kernel
+
+
+@dataclass(frozen=True)
+class ForwardKinematics:
+    """The forward-kinematics tables: ``modes`` assembly modes (0: not generated, ``note``
+    says why), an eliminant closure (``rps``), back-substitution ``steps`` for the
+    ``unknowns`` (Study coordinates of the triangular closures) with their Newton kernel,
+    and ``pose``, the pose coordinates from the solved Study coordinates."""
+
+    modes: int = 0
+    note: str = ""
+    rps: RPSKernels | None = None
+    steps: tuple = ()
+    index: tuple[int, ...] = ()
+    unknowns: tuple[str, ...] = ()
+    mode_bits: tuple = ()
+    newton: Kernel | None = None
+    pose: Kernel | None = None
+
+
+@dataclass(frozen=True)
+class Model:
+    """Tables and kernels of one generated module (names as in the module's constants)."""
+
+    mechanism: str
+    parameters: Mapping[str, float]
+    parameter_units: Mapping[str, str]
+    parameter_notes: Mapping[str, str]
+    pose: tuple[str, ...]
+    study_pose: tuple[str, ...]
+    joints: tuple[str, ...]
+    modes: int
+    study: Kernel
+    steps: tuple
+    solve_index: tuple[int, ...]
+    jac: Kernel
+    ji: Kernel
+    jo_study: Kernel
+    singularity_kernels: Mapping[str, Kernel]
+    pivots: Kernel | None = None
+    limits: tuple = ()
+    limit_kernel: Kernel | None = None
+    passive: tuple = ()  # per leg: ((kind, kernel, output indices), ...)
+    passive_names: tuple[str, ...] = ()
+    twist: Kernel | None = None
+    helical: Kernel | None = None
+    links: tuple = ()  # ((kernel, first link index, count), ...)
+    link_names: tuple[str, ...] = ()
+    fk: ForwardKinematics = field(default_factory=ForwardKinematics)
+
+    # ------------------------------------------------------------ inverse kinematics
+    def solve(self, pose, mode, par, with_status=False, limits=True):
+        """Inverse kinematics of one working mode; NaN at input singularities of linear
+        steps and, with ``limits``, outside the ranges of ``LIMITS``.
+
+        A linear step ``B q + C = 0`` is singular where its pivot ``B = dG/dq`` vanishes
+        relative to the generator's derivatives (the joint is then undetermined)."""
+        shape = pose.shape[:-1]
+        with numpy.errstate(all="ignore"):
+            values = self.study(*columns(pose), *par)
+        study = numpy.empty(shape + (len(self.study_pose),))
+        for i, v in enumerate(values):
+            study[..., i] = v
+        q, status = backsubstitute(study, self.steps, self.solve_index, len(self.joints), mode,
+                                   par, with_status)
+        if with_status:
+            status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
+        if self.pivots is not None:
+            q, status = self._pivot_check(study, q, status, par, with_status)
+        if limits and self.limits:
+            q, status = self._limit_check(pose, q, status, par, with_status)
+        return q, status
+
+    def _limit_check(self, pose, q, status, par, with_status):
+        shape = pose.shape[:-1]
+        with numpy.errstate(all="ignore"):
+            values = self.limit_kernel(*columns(pose), *columns(q), *par)
+        violated = {"stroke": numpy.zeros(shape, dtype=bool),
+                    "passive": numpy.zeros(shape, dtype=bool)}
+        for v, (_, lower, upper, kind, _, _) in zip(values, self.limits):
+            v = numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+            violated[kind] |= (v < lower) | (v > upper)
+        ok = numpy.all(numpy.isfinite(q), axis=-1)
+        out = violated["stroke"] | violated["passive"]
+        q[out] = numpy.nan
+        if with_status:
+            status = numpy.where(ok & violated["passive"] & (status == OK),
+                                 PASSIVE_JOINT_LIMIT, status)
+            status = numpy.where(ok & violated["stroke"] & (status != INVALID_INPUT)
+                                 & ((status == OK) | (status == PASSIVE_JOINT_LIMIT)),
+                                 STROKE_LIMIT, status).astype(numpy.int8)
+        return q, status
+
+    def _pivot_check(self, study, q, status, par, with_status):
+        shape = study.shape[:-1]
+        with numpy.errstate(all="ignore"):
+            values = self.pivots(*columns(study), *columns(q), *par)
+            half = len(values) // 2
+            singular = numpy.zeros(shape, dtype=bool)
+            for d, sc in zip(values[:half], values[half:]):
+                singular |= numpy.abs(d) <= DET_RTOL * numpy.abs(sc)
+        singular &= numpy.all(numpy.isfinite(q), axis=-1)
+        q[singular] = numpy.nan
+        if with_status:
+            status = numpy.where(singular & (status == OK), INPUT_SINGULAR, status).astype(
+                numpy.int8)
+        return q, status
+
+    def ik(self, pose, mode=0, limits=True, params=None):
+        q, _ = self.solve(check.pose(self, "ik", pose), check.mode(self, "ik", mode),
+                          check.parameters(self, "ik", params or {}), False, limits)
+        return q
+
+    def ik_status(self, pose, mode=0, limits=True, params=None):
+        _, status = self.solve(check.pose(self, "ik_status", pose),
+                               check.mode(self, "ik_status", mode),
+                               check.parameters(self, "ik_status", params or {}), True, limits)
+        return status
+
+    def ik_and_status(self, pose, mode=0, limits=True, params=None):
+        return self.solve(check.pose(self, "ik_and_status", pose),
+                          check.mode(self, "ik_and_status", mode),
+                          check.parameters(self, "ik_and_status", params or {}), True, limits)
+
+    def ik_all(self, pose, limits=True, params=None):
+        pose = check.pose(self, "ik_all", pose)
+        par = check.parameters(self, "ik_all", params or {})
+        return numpy.stack([self.solve(pose, m, par, False, limits)[0]
+                            for m in range(self.modes)], axis=-2)
+
+    def limit_values(self, pose, q, params=None):
+        pose = check.pose(self, "limit_values", pose)
+        shape = pose.shape[:-1]
+        q = check.joints(self, "limit_values", q, shape)
+        par = check.parameters(self, "limit_values", params or {})
+        if not self.limits:
+            return {}
+        values = self.limit_kernel(*columns(pose), *columns(q), *par)
+        return {lim[0]: numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+                for lim, v in zip(self.limits, values)}
+
+    # ------------------------------------------------------------ velocity model
+    def _matrices(self, pose, q, par):
+        shape = pose.shape[:-1]
+        n = len(self.joints)
+
+        def mat(values, m):
+            return stacked(values, shape).reshape(shape + (n, m))
+
+        cols, qc = columns(pose), columns(q)
+        return (mat(self.ji(*cols, *qc, *par), n),
+                mat(self.jo_study(*cols, *qc, *par), len(self.study_pose)))
+
+    def input_jacobian(self, pose, q, params=None):
+        pose = check.pose(self, "input_jacobian", pose)
+        q = check.joints(self, "input_jacobian", q, pose.shape[:-1])
+        return self._matrices(pose, q, check.parameters(self, "input_jacobian",
+                                                        params or {}))[0]
+
+    def output_jacobian(self, pose, q, params=None):
+        pose = check.pose(self, "output_jacobian", pose)
+        q = check.joints(self, "output_jacobian", q, pose.shape[:-1])
+        return self._matrices(pose, q, check.parameters(self, "output_jacobian",
+                                                        params or {}))[1]
+
+    @staticmethod
+    def pivot_singular(pivots, scales, shape):
+        """True where a pivot dG_k/dq_k vanishes relative to its row scale (or is not
+        finite): an input singularity."""
+        singular = numpy.zeros(shape, dtype=bool)
+        for d, sc in zip(pivots, scales):
+            singular |= ~(numpy.abs(d) > DET_RTOL * sc)
+        return singular
+
+    def jacobian_and_status(self, pose, mode=0, limits=True, params=None,
+                            func="jacobian_and_status"):
+        """``dq/dX`` by forward substitution (Ji is triangular in the solve order) and the
+        status: an IK status, or INPUT_SINGULAR where a pivot vanishes or a quadratic step
+        has a double root."""
+        pose, mode = check.pose(self, func, pose), check.mode(self, func, mode)
+        par = check.parameters(self, func, params or {})
+        q, status = self.solve(pose, mode, par, True, limits)
+        shape = pose.shape[:-1]
+        n, m = len(self.joints), len(self.pose)
+        with numpy.errstate(all="ignore"):
+            values = self.jac(*columns(pose), *columns(q), *par)
+            singular = self.pivot_singular(values[:n], values[n:2 * n], shape)
+            J = numpy.empty(shape + (n * m,))
+            for k, e in enumerate(values[2 * n:]):
+                J[..., k] = e
+        singular |= status == ON_BOUNDARY
+        J = J.reshape(shape + (n, m))
+        J[singular] = numpy.nan
+        ik_ok = (status == OK) | (status == ON_BOUNDARY)
+        status = numpy.where(ik_ok & singular, INPUT_SINGULAR, status).astype(numpy.int8)
+        return J, status
+
+    def singularities(self, pose, q, params=None):
+        pose = check.pose(self, "singularities", pose)
+        shape = pose.shape[:-1]
+        q = check.joints(self, "singularities", q, shape)
+        par = check.parameters(self, "singularities", params or {})
+        with numpy.errstate(all="ignore"):
+            study = self.study(*columns(pose), *par)
+            qc = columns(q)
+            return {name: numpy.broadcast_to(numpy.asarray(kern(*study, *qc, *par)[0],
+                                                           dtype=float), shape)
+                    for name, kern in self.singularity_kernels.items()}
+
+    # ------------------------------------------------------------ passive joints, twist
+    def _passive(self, pose, mode, par):
+        q, _ = self.solve(pose, mode, par, False, False)
+        shape = pose.shape[:-1]
+        with numpy.errstate(all="ignore"):
+            study = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+                     for v in self.study(*columns(pose), *par)]
+            out = numpy.full(shape + (len(self.passive_names),), numpy.nan)
+            for leg in self.passive:
+                solved = []
+                for kind, kern, idx in leg:
+                    values = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+                              for v in kern(*study, *columns(q), *solved, *par)]
+                    if kind == "linear":
+                        vals = [linear_candidates(values)]
+                    elif kind == "quadratic":
+                        vals = [smaller_root(*values)]
+                    else:
+                        vals = unit_quaternion(values)
+                    for i, v in zip(idx, vals):
+                        out[..., i] = v
+                    solved += vals
+        return q, out
+
+    def passive_joints(self, pose, mode=0, params=None):
+        pose = check.pose(self, "passive_joints", pose)
+        mode = check.mode(self, "passive_joints", mode)
+        return self._passive(pose, mode, check.parameters(self, "passive_joints",
+                                                          params or {}))[1]
+
+    def link_poses(self, pose, mode=0, params=None):
+        pose = check.pose(self, "link_poses", pose)
+        mode = check.mode(self, "link_poses", mode)
+        par = check.parameters(self, "link_poses", params or {})
+        q, passive = self._passive(pose, mode, par)
+        shape = pose.shape[:-1]
+        out = numpy.full(shape + (len(self.link_names), 8), numpy.nan)
+        with numpy.errstate(all="ignore"):
+            study = self.study(*columns(pose), *par)
+            for kern, first, count in self.links:
+                values = stacked(kern(*study, *columns(q), *columns(passive), *par), shape)
+                out[..., first:first + count, :] = values.reshape(shape + (count, 8))
+            out /= numpy.linalg.norm(out[..., :4], axis=-1, keepdims=True)
+        return out
+
+    def pose_twist(self, pose, params=None):
+        pose = check.pose(self, "pose_twist", pose)
+        par = check.parameters(self, "pose_twist", params or {})
+        with numpy.errstate(all="ignore"):
+            values = self.twist(*columns(pose), *par)
+        return stacked(values, pose.shape[:-1]).reshape(pose.shape[:-1] + (6, len(self.pose)))
+
+    def twist_jacobian(self, pose, mode=0, limits=True, params=None):
+        J, status = self.jacobian_and_status(pose, mode, limits, params, "twist_jacobian")
+        t = self.pose_twist(pose, params)
+        n = len(self.joints)
+        if J.shape[-2:] != (n, n):
+            raise NotImplementedError(f"{self.mechanism}.twist_jacobian: dq/dX is {J.shape[-2:]}"
+                                      ", not square")
+        ok = numpy.isfinite(J).all(axis=(-2, -1))
+        safe = numpy.where(ok[..., None, None], J, numpy.eye(n))
+        with numpy.errstate(all="ignore"):
+            cond = numpy.linalg.cond(safe)
+            inv = numpy.linalg.inv(safe)
+        ok &= cond < 1e12  # a forward singularity: dq/dX loses rank
+        return numpy.where(ok[..., None, None], t @ inv, numpy.nan)
+
+    def helical_residuals(self, pose, mode=0, params=None):
+        pose = check.pose(self, "helical_residuals", pose)
+        par = check.parameters(self, "helical_residuals", params or {})
+        q, passive = self._passive(pose, check.mode(self, "helical_residuals", mode), par)
+        with numpy.errstate(all="ignore"):
+            values = self.helical(*columns(passive), *columns(q), *par)
+        return stacked(values, pose.shape[:-1])
+
+    # ------------------------------------------------------------ forward kinematics
+    def _fk_joints(self, func, q):
+        if not self.fk.modes:
+            raise NotImplementedError(f"{self.mechanism}.{func}: forward kinematics is not "
+                                      f"generated for this mechanism: {self.fk.note}")
+        return check.coordinates(self, func, q, self.joints, "joints")
+
+    def fk_all(self, q, params=None, with_status=False, func="fk"):
+        q = self._fk_joints(func, q)
+        par = check.parameters(self, func, params or {})
+        return fk_solver.solve_all(self, q, par, with_status)
+
+    # ------------------------------------------------------------ other functions
+    def pose_function(self, func, kern, pose, params=None):
+        pose, par = check.pose(self, func, pose), check.parameters(self, func, params or {})
+        with numpy.errstate(all="ignore"):
+            values = kern(*columns(pose), *par)
+        return stacked(values, pose.shape[:-1])
+
+    def function(self, func, kern, values, names: Sequence[str], params=None):
+        values = check.coordinates(self, func, values, names, "values")
+        par = check.parameters(self, func, params or {})
+        with numpy.errstate(all="ignore"):
+            out = kern(*columns(values), *par)
+        return stacked(out, values.shape[:-1])
+
+
+def linear_candidates(values):
+    """``v = -C/B`` from the candidate ``(B, C)`` pairs, per sample the one whose pivot is
+    largest relative to its generator (``|B| / (|B| + |C|)``)."""
+    bs, cs = values[0::2], values[1::2]
+    best = numpy.full(numpy.shape(bs[0]), -1.0)
+    out = numpy.full(numpy.shape(bs[0]), numpy.nan)
+    for b, c in zip(bs, cs):
+        with numpy.errstate(all="ignore"):
+            score = numpy.abs(b) / (numpy.abs(b) + numpy.abs(c))
+            score = numpy.where(numpy.isfinite(score), score, -1.0)
+            take = (score > best) & (b != 0)
+            out = numpy.where(take, -c / b, out)
+            best = numpy.where(take, score, best)
+    return out
+
+
+def smaller_root(a, b, c):
+    """The root of ``a v^2 + b v + c`` of smaller magnitude (NaN where none is real)."""
+    with numpy.errstate(all="ignore"):
+        disc = b * b - 4.0 * a * c
+        sq = numpy.sqrt(numpy.where(disc >= -1e-10 * b * b, numpy.maximum(disc, 0.0), numpy.nan))
+        big = -(b + numpy.where(b >= 0, sq, -sq)) / 2.0  # the larger-magnitude combination
+        small = numpy.where(big != 0, c / big, numpy.where(a != 0, 0.0, -c / b))
+        return numpy.where(a == 0, -c / b, small)
+
+
+def unit_quaternion(values):
+    """``values`` (4 arrays) scaled to a unit quaternion with a non-negative first entry."""
+    q = numpy.stack(values, axis=-1)
+    with numpy.errstate(all="ignore"):
+        q = q / numpy.linalg.norm(q, axis=-1, keepdims=True)
+        q = numpy.where(q[..., :1] < 0, -q, q)
+    return [q[..., i] for i in range(4)]

@@ -1,0 +1,163 @@
+"""Forward kinematics of each closure: the first solver of :data:`CLOSURE_SOLVERS` that
+recognizes the closure derives it; a closure none can solve leaves the mechanism without
+generated forward kinematics, and the reason is reported.
+
+* :class:`RPSEliminant`: a closure of three R-P-S legs.  The lex basis of its
+  circle-distance system over Q(joints, geometry) is out of reach, so the eliminant of
+  degree 16 is formed per configuration in the runtime (:mod:`bonered_alg.runtime.rps`);
+  the solution count at a generic rational configuration, from a Groebner basis, certifies
+  that degree (:mod:`bonered_alg.kinematics.rps_forward`).
+* :class:`TriangularLexBasis`: the union of the leg ideals has a lex basis over
+  Q(joints, geometry) that is zero-dimensional and triangular with steps of degree <= 2,
+  solved by back-substitution (all assembly modes at once).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import sympy as sp
+
+from ..algebra import convention as cv
+from ..codegen.kernels import kernel
+from ..elimination import polyterms as pt
+from ..elimination.problem import ParametricProblem
+from ..errors import EngineTimeoutError
+from ..kinematics.ik_plan import plan
+from ..kinematics.rps_forward import (
+    DEGREE_BOUND,
+    angles_from_platform,
+    count_solutions,
+    forward_singularity,
+    rps_system,
+)
+from ..kinematics.singularities import factored
+from ..pipeline.results import ClosureFK
+
+FK_BUDGET_S = 120.0
+
+
+class NotSolvable(Exception):
+    """A solver recognized the closure but cannot solve it (the message says why)."""
+
+
+class RPSEliminant:
+    name = "3-RPS eliminant"
+
+    def recognize(self, mech, closure, legs) -> bool:
+        return rps_system(mech, closure) is not None
+
+    def derive(self, mech, closure, legs, algebra) -> ClosureFK:
+        rps = rps_system(mech, closure)
+        if tuple(closure.platform) != (1, *closure.pose):
+            raise NotSolvable(f"the {closure.name} is a 3-RPS closure, but its point is not "
+                              "in the chart x0 = 1 the 3-RPS forward kinematics writes")
+        budget = dataclasses.replace(algebra, budget_s=min(algebra.budget_s, FK_BUDGET_S))
+        count, at = count_solutions(rps, mech, budget)
+        if count != DEGREE_BOUND:
+            raise NotSolvable(f"the {closure.name} has {count} forward-kinematics solutions "
+                              f"at a generic configuration, not the {DEGREE_BOUND} of the "
+                              "iterated resultant: its eliminant would carry extraneous roots")
+        problem = ParametricProblem(
+            f"mechanism {mech.name!r}, closure {closure.name!r}: forward kinematics "
+            "(circle-distance system)", rps.equations, rps.angles, rps.joints)
+        det = forward_singularity(rps)
+        sing = factored(
+            f"det_forward_{closure.point}", det,
+            f"forward (type II) singularity of the {closure.name}: det d(e12, e23, e31)/d("
+            + ", ".join(map(str, rps.angles)) + "), zero where two assembly modes merge "
+            "and the platform moves infinitesimally with the legs locked",
+            evaluate=det.subs(angles_from_platform(rps, closure.platform)))
+        return ClosureFK(closure.name, self.name, problem, None, 0, count, (), rps, at, sing)
+
+    def kernels(self, rps, joints, par) -> list:
+        """The kernels of the runtime step (``runtime.rps``): coefficients, equations and
+        Jacobian, centres, platform points, Study point from (R, t)."""
+        u = list(rps.angles)
+        eqs = sp.Matrix(list(rps.equations))
+        rot = sp.Matrix(3, 3, sp.symbols("r0:9", real=True))
+        trans = sp.symbols("t0:3", real=True)
+        x = cv.rotation_ratios(rot.tolist())[0]
+        study = tuple(x) + cv.dual_part_from_translation(trans, x)
+        return [
+            kernel("_rps_coefficients", [*joints, *par],
+                   [e for m in rps.coefficients for row in m for e in row],
+                   "Coefficients C_ij[a][b] of u_i^a u_j^b in e12, e23, e31 (row-major)."),
+            kernel("_rps_equations", [*u, *joints, *par], list(eqs) + list(eqs.jacobian(u)),
+                   "e12, e23, e31 and their Jacobian in the revolute tan-half angles."),
+            kernel("_rps_centres", [*u, *joints, *par], [e for p in rps.centres for e in p],
+                   "Spherical joint centres B_k in the closure's base frame."),
+            kernel("_rps_platform", list(par), [e for p in rps.platform for e in p],
+                   "Spherical joint centres P_k in the platform frame."),
+            kernel("_rps_study", [*rot, *trans], [e / study[0] for e in study[1:]],
+                   "Study coordinates (chart x0 = 1) of the platform from R (row-major) and t."),
+        ]
+
+
+class TriangularLexBasis:
+    name = "triangular lex basis"
+
+    def recognize(self, mech, closure, legs) -> bool:
+        return True
+
+    def derive(self, mech, closure, legs, algebra) -> ClosureFK:
+        gens = [g for r in legs if r.closure is closure for g in r.generators]
+        syms = set().union(*(g.free_symbols for g in gens))
+        # rotation coordinates last: for fixed rotation the closure equations are mostly
+        # linear in the dual part, so the univariate polynomial of the lex basis is in the
+        # rotation and the translation follows linearly (with pivots that do not vanish at
+        # symmetric configurations such as equal strokes, which the reverse order gave)
+        primal = set().union(*(sp.sympify(c).free_symbols for c in closure.platform[:4]))
+        pose_unknowns = tuple(sorted((y for y in closure.pose if y in syms),
+                                     key=lambda y: y in primal))
+        # algebraic constants are the last (lowest) unknowns, bound by their minimal
+        # polynomials; they are not solved for but substituted (generators stay valid)
+        consts = [c for c in mech.constants if c.symbol in syms]
+        unknowns = pose_unknowns + tuple(c.symbol for c in consts)
+        params = tuple(s for s in (*mech.active, *mech.geometric) if s in syms)
+        problem = ParametricProblem(
+            f"mechanism {mech.name!r}, closure {closure.name!r}: forward kinematics",
+            tuple(dict.fromkeys(gens + [sp.expand(c.minimal_polynomial) for c in consts])),
+            unknowns, params)
+        budget = min(algebra.budget_s, FK_BUDGET_S)
+        try:
+            result = algebra.lex_basis(problem, budget)
+        except EngineTimeoutError:
+            raise NotSolvable(f"the lex basis of the {closure.name} exceeded its budget of "
+                              f"{budget:g} s") from None
+        n = len(unknowns)
+        leading = [max(e[:n] for e, _ in p) for p in result.basis]
+        dim = pt.dimension_from_leading_monomials(leading, n)
+        if dim != 0:
+            raise NotSolvable(f"the ideal of the {closure.name} has dimension {dim} over the "
+                              "field of joints and geometry: no finite set of assembly modes")
+        count = pt.count_standard_monomials(leading, n)
+        for c in consts:
+            count //= int(sp.degree(c.minimal_polynomial, c.symbol))
+        const_syms = {c.symbol for c in consts}
+        pool = [(f"lex basis of the {closure.name}", g) for g in result.generators
+                if not g.free_symbols <= const_syms | set(params)]
+        try:
+            steps = plan(pool, pose_unknowns, problem.context)
+        except NotImplementedError as exc:
+            raise NotSolvable(f"{exc} ({count} solutions; univariate steps of higher degree "
+                              "are not generated yet)") from None
+        return ClosureFK(closure.name, self.name, problem, result, dim, count, tuple(steps))
+
+
+CLOSURE_SOLVERS = (RPSEliminant(), TriangularLexBasis())
+
+
+def forward_kinematics(mech, legs, algebra) -> tuple[tuple[ClosureFK, ...], str]:
+    """Every actuated closure's forward kinematics, or ``((), reason)`` when one closure
+    cannot be solved (the generated ``fk`` needs all of them)."""
+    out: list[ClosureFK] = []
+    for closure in mech.actuated_closures:
+        solver = next(s for s in CLOSURE_SOLVERS if s.recognize(mech, closure, legs))
+        if isinstance(solver, RPSEliminant) and any(f.solver == solver.name for f in out):
+            return (), "more than one 3-RPS closure: the code generator solves one per mechanism"
+        try:
+            out.append(solver.derive(mech, closure, legs, algebra))
+        except NotSolvable as exc:
+            return (), str(exc)
+    return tuple(out), ""

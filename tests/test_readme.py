@@ -1,0 +1,28 @@
+"""The README's Python examples run, in order, as written."""
+
+import re
+
+import numpy as np
+from conftest import record_of
+
+from bonered_alg.pipeline import runner
+from tests.conftest import ROOT
+
+
+def test_readme_examples_run(monkeypatch):
+    text = (ROOT / "README.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert len(blocks) >= 4
+    monkeypatch.chdir(ROOT)
+    # the README derives the worked example: share the session's derivation of it
+    record_of("pro_hep_lct")  # binds the runner's own derive before it is patched
+    monkeypatch.setattr(runner, "derive", record_of)
+    namespace: dict = {}
+    for block in blocks:
+        exec(compile(block, "README.md", "exec"), namespace)  # noqa: S102 - our README
+    # the first example's results are what the README says they are
+    m = namespace["m"]
+    assert namespace["q"].shape[-1] == 6 and m.MODES == 8
+    assert np.isfinite(namespace["everything"]).any()
+    assert namespace["res"].count > 0
+    assert namespace["g"].MODES == 8
