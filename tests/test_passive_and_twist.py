@@ -49,12 +49,7 @@ def test_passive_joints_close_every_leg(name):
             names = [s for s in leg.free_symbols if str(s) in gen.PASSIVE + gen.JOINTS]
             prod = sp.lambdify(names, [sp.sympify(c).subs({**geo, **consts})
                                        for c in leg.product()], "numpy")
-            # the platform coordinates the pose map gives (a fixed one, e.g. Pu's yu3 =
-            # -Dz/2, is not a coordinate of the pose)
-            known = [k for k, c in enumerate(closure.platform)
-                     if sp.sympify(c).free_symbols <= set(study_names)]
-            plat = sp.lambdify(study_names, [sp.sympify(closure.platform[k]).subs(
-                {**geo, **consts}) for k in known], "numpy")
+            known, plat = _platform_point(closure, study_names, {**geo, **consts})
             for pose, qq, pp in zip(poses[ok], q[ok], passive[ok]):
                 values = dict(zip(gen.JOINTS, qq)) | dict(zip(gen.PASSIVE, pp))
                 chain = np.array(prod(*[values[str(s)] for s in names]), dtype=float)[known]
@@ -64,6 +59,16 @@ def test_passive_joints_close_every_leg(name):
                 lam = chain @ point / (point @ point)
                 err = np.abs(chain - lam * point).max() / np.abs(chain).max()
                 assert err < 1e-9, (closure.name, leg.name, err)
+
+
+def _platform_point(closure, study_names, values):
+    """The coordinates of the closure's platform point that the pose map gives (a fixed one,
+    e.g. Pu's yu3 = -Dz/2, is not a coordinate of the pose) and a function of the Study
+    coordinates evaluating them."""
+    known = [k for k, c in enumerate(closure.platform)
+             if sp.sympify(c).free_symbols <= set(study_names)]
+    return known, sp.lambdify(study_names, [sp.sympify(closure.platform[k]).subs(values)
+                                            for k in known], "numpy")
 
 
 def _independent_pose(pose):
@@ -113,10 +118,7 @@ def test_link_poses_end_on_the_platform(name):
     consts = {c.symbol: float(c.value) for c in mech.constants}
     study_names = [sp.Symbol(s, real=True) for s in gen.STUDY_POSE]
     for closure in mech.actuated_closures:
-        known = [k for k, c in enumerate(closure.platform)
-                 if sp.sympify(c).free_symbols <= set(study_names)]
-        plat = sp.lambdify(study_names, [sp.sympify(closure.platform[k]).subs(
-            {**geo, **consts}) for k in known], "numpy")
+        known, plat = _platform_point(closure, study_names, {**geo, **consts})
         for leg in closure.legs:
             moving = [k for k, j in enumerate(leg.joints) if j.kind != "offset"]
             tail = [f for j in leg.joints[moving[-1] + 1:] for f in j.factors]

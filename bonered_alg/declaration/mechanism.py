@@ -141,20 +141,24 @@ class Mechanism:
     def active(self) -> tuple[sp.Symbol, ...]:
         return tuple(self.joints)
 
-    @property
-    def passive(self) -> tuple[sp.Symbol, ...]:
-        """Passive joint variables: the symbols of passive factors and coupling-only
-        unknowns, in order of appearance."""
+    def passive_factor_symbols(self) -> list[sp.Symbol]:
+        """The symbols of the passive factors of every leg, in order of appearance."""
         out: list[sp.Symbol] = []
-        fixed = set(self.joints) | set(self.geometric) | self._pose_symbols()
-        fixed |= {c.symbol for c in self.constants}
         for closure in self.closures:
             for leg in closure.legs:
                 for f in leg.factors:
                     if f.role is Role.PASSIVE:
-                        for s in sorted(f.free_symbols, key=str):
-                            if s not in out and s not in fixed:
-                                out.append(s)
+                        out += [s for s in sorted(f.free_symbols, key=str) if s not in out]
+        return out
+
+    @property
+    def passive(self) -> tuple[sp.Symbol, ...]:
+        """Passive joint variables: the symbols of passive factors and coupling-only
+        unknowns, in order of appearance."""
+        fixed = set(self.joints) | set(self.geometric) | self._pose_symbols()
+        fixed |= {c.symbol for c in self.constants}
+        out = [s for s in self.passive_factor_symbols() if s not in fixed]
+        for closure in self.closures:
             for cp in closure.couplings:
                 for s in sorted(sp.sympify(cp.equation).free_symbols, key=str):
                     if s not in out and s not in fixed:
@@ -264,13 +268,7 @@ def _check_roles(mech: Mechanism) -> None:
              "closure Study coordinate": {s for c in mech.closures for s in c.pose},
              "pose coordinate": set(mech.pose.coordinates),
              "algebraic constant": {c.symbol for c in mech.constants}}
-    passive = set()
-    for closure in mech.closures:
-        for leg in closure.legs:
-            for f in leg.factors:
-                if f.role is Role.PASSIVE:
-                    passive |= f.free_symbols
-    roles["passive joint"] = passive - roles["actuated joint"]
+    roles["passive joint"] = set(mech.passive_factor_symbols()) - roles["actuated joint"]
     names = list(roles)
     for i, a in enumerate(names):
         for b in names[i + 1:]:

@@ -171,11 +171,10 @@ class Study:
 
 @dataclass(frozen=True)
 class Record:
-    """Everything a mechanism's derivation writes: generated module, report, verdicts,
-    files beside the report."""
+    """Everything a mechanism's derivation produces: the derivation, the generated module,
+    the studies and the verdicts (``outputs.files`` renders the report from them)."""
 
     derivation: Derivation
     generated: GeneratedModule
     studies: Mapping[str, Study] = field(default_factory=dict)
     verification: tuple[Verdict, ...] = ()
-    report: str = ""

@@ -4,6 +4,7 @@ whose outputs are out of date, written to disk (:func:`derive_all`)."""
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from pathlib import Path
 from types import ModuleType
 
@@ -43,9 +44,8 @@ def derive(target: str | ModuleType, engine: Engine | None = None,
     studies = stages.run_studies(d, gm)
     verdicts = stages.verify(d, gm, studies)
     t3 = time.perf_counter()
-    d = Derivation(**{**d.__dict__, "timings": frozen_map({
-        **d.timings, "code generation": t2 - t1, "studies and verification": t3 - t2,
-        "total": t3 - t0})})
+    d = replace(d, timings=frozen_map({**d.timings, "code generation": t2 - t1,
+                                       "studies and verification": t3 - t2, "total": t3 - t0}))
     return Record(d, gm, studies, verdicts)
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import sympy as sp
 
 from ..algebra.study_symbolic import quadric
+from ..declaration.closures import UnitCoordinate
 from ..elimination import sphere_leg
 from ..elimination.closure import leg_problem, moved_platform
 from ..elimination.problem import EliminationProblem
@@ -28,9 +29,9 @@ class DistanceLeg:
         d = sphere_leg.recognize(leg)
         if d is None or leg.mount is not None:
             return None
-        if closure.normalization.__class__.__name__ != "UnitCoordinate" or \
-                closure.normalization.index != 0:
-            return None
+        chart = closure.normalization
+        if not (isinstance(chart, UnitCoordinate) and chart.index == 0):
+            return None  # the certificate is written in the chart x0 = 1
         full = leg_problem(mech, closure, leg)
         passive = tuple(s for s in full.eliminate if s != closure.normalization.scale)
         params = {p.symbol: sp.nsimplify(p.value) for p in mech.parameters}
