@@ -22,6 +22,7 @@ from .status import (
     PASSIVE_JOINT_LIMIT,
     STATUS,
     STROKE_LIMIT,
+    UNVERIFIED,
 )
 
 # the contract between the code generator and this runtime; a generated module states the
@@ -39,4 +40,4 @@ def require(version: int, mechanism: str) -> None:
 __all__ = ["API_VERSION", "FORWARD_SINGULAR", "INPUT_SINGULAR", "INVALID_INPUT",
            "JOINT_AT_INFINITY", "NO_REAL_SOLUTION", "OK", "ON_BOUNDARY", "OUTSIDE_CHART",
            "PASSIVE_JOINT_LIMIT", "STATUS", "STROKE_LIMIT", "ForwardKinematics", "Model",
-           "RPSKernels", "require"]
+           "RPSKernels", "UNVERIFIED", "require"]

@@ -12,10 +12,18 @@ import numpy
 from . import rps as rps_solver
 from .backsubstitution import backsubstitute
 from .inputs import columns, stacked
-from .status import INPUT_SINGULAR, OK
+from .status import (
+    COND_RTOL,
+    FORWARD_SINGULAR,
+    INPUT_SINGULAR,
+    OK,
+    ON_BOUNDARY,
+    UNVERIFIED,
+    VERIFY_RTOL,
+)
 
 
-def polish(spec, q, study, par, iterations=2):
+def polish(spec, q, study, par, iterations=6):
     """Gauss-Newton steps on the (well-conditioned) leg generators, from the lex-basis
     solution: ``(J^T J) step = J^T f`` (the plain Newton step when J is square)."""
     n = len(spec.unknowns)
@@ -38,6 +46,44 @@ def polish(spec, q, study, par, iterations=2):
             step = numpy.linalg.solve(safe, numpy.where(ok[..., None, None], jtf, 0.0))
         study = numpy.where(ok[..., None], study - step[..., 0], study)
     return study
+
+
+def verify(spec, q, study, par, status):
+    """The check of every back-substituted mode on the closure equations (the leg
+    generators): one more Gauss-Newton step must change no unknown by more than
+    VERIFY_RTOL (1 + |x|), else the mode is UNVERIFIED and NaN (a step divided by a pivot
+    near zero: e.g. Pro-Hep-LCT's lower lex basis on t1 = +-w1).  A verified mode where the
+    column-scaled Jacobian is nearly rank deficient is FORWARD_SINGULAR (two assembly modes
+    merge); elsewhere a verified mode is OK even where a quadratic step of the basis had a
+    double root (ON_BOUNDARY there means a double root of the basis, not a boundary)."""
+    n = len(spec.unknowns)
+    shape = study.shape[:-1]
+    with numpy.errstate(all="ignore"):
+        values = spec.newton(*columns(study), *columns(q), *par)
+        vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape) for v in values]
+        m = len(vals) // (n + 1)
+        f = numpy.stack(vals[:m], axis=-1)
+        jac = numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n))
+        finite = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
+        finite &= numpy.isfinite(study).all(axis=-1)
+        scale = 1.0 + numpy.abs(numpy.where(finite[..., None], study, 0.0))
+        js = numpy.where(finite[..., None, None], jac * scale[..., None, :], 0.0)
+        # each equation to unit scale (the generators' units differ: mm^2, mm^4, ...)
+        rows = numpy.linalg.norm(js, axis=-1)
+        rows = numpy.where(rows > 0, rows, 1.0)
+        js, fs = js / rows[..., None], numpy.where(finite[..., None], f, 0.0) / rows
+        sv = numpy.linalg.svd(js, compute_uv=False)
+        cond_ok = sv[..., -1] > COND_RTOL * sv[..., 0]
+        # the Gauss-Newton step in the scaled unknowns, by least squares through the SVD
+        step = (numpy.linalg.pinv(js, rcond=COND_RTOL) @ fs[..., None])[..., 0]
+        verified = finite & (numpy.abs(step) <= VERIFY_RTOL).all(axis=-1)
+    solved = numpy.isfinite(study).all(axis=-1)
+    study = numpy.where(solved[..., None] & ~verified[..., None], numpy.nan, study)
+    if status is None:
+        return study, None
+    solved &= (status == OK) | (status == ON_BOUNDARY)
+    new = numpy.where(~verified, UNVERIFIED, numpy.where(cond_ok, OK, FORWARD_SINGULAR))
+    return study, numpy.where(solved, new, status).astype(numpy.int8)
 
 
 def input_singular(model, pose, q, par, status):
@@ -65,7 +111,8 @@ def solve_all(model, q, par, with_status):
         if spec.steps:
             study, status = backsubstitute(q, spec.steps, spec.index, len(spec.unknowns), m,
                                            par, with_status)
-            solved.append((polish(spec, q, study, par), status))
+            study, status = verify(spec, q, polish(spec, q, study, par), par, status)
+            solved.append((study, status))
         else:
             solved.append((numpy.zeros(shape + (0,)),
                            numpy.zeros(shape, dtype=numpy.int8) if with_status else None))

@@ -26,7 +26,17 @@ SAMPLES = DEGREE + 1
 IMAG_TOL = 1e-2
 RESIDUAL_TOL = 1e-9
 MERGE_TOL = 1e-7
-SINGULAR_TOL = 1e-8
+SINGULAR_TOL = 1e-6
+STEP_TOL = 1e-10
+# two roots of a leg's quadratic closer than this (chart w) get their midpoint as a start
+PAIR_TOL = 0.2
+NEWTON_STEPS = 16
+MAX_STEP = 0.5
+# displacements (rad) along the null direction in the search for a lost partner root
+PARTNER_STEPS = (3e-4, 3e-3, 3e-2, 0.3)
+# how many nearly singular modes (singular ratio below PARTNER_RATIO) are searched
+PARTNER_MODES = 4
+PARTNER_RATIO = 1e-2
 
 
 def poly_mul(a, b):
@@ -78,12 +88,20 @@ def roots(p):
 
 
 def quadratic_roots(c):
-    """Both roots (..., 2) of c0 + c1 x + c2 x^2 (complex coefficients (..., 3))."""
+    """Both roots of c0 + c1 x + c2 x^2 (complex coefficients (..., 3)) and, third, the
+    double root the pair tends to where the discriminant vanishes (..., 3).
+
+    The third candidate is the midpoint of the pair in the chart w = (x - T)/(1 + T x), in
+    which the roots are well scaled: near a forward singularity a leg's quadratic has a
+    nearly double root that the roots of a slightly perturbed quadratic (u1 from a cluster
+    of eliminant roots, accurate to eps^(1/k)) straddle by sqrt of the perturbation."""
     c0, c1, c2 = c[..., 0], c[..., 1], c[..., 2]
     sq = numpy.sqrt(c1 * c1 - 4.0 * c2 * c0)
     sq = numpy.where((numpy.conj(c1) * sq).real >= 0.0, sq, -sq)  # no cancellation
     big = -(c1 + sq) / 2.0
-    return numpy.stack([big / c2, c0 / big], axis=-1)
+    r0, r1 = big / c2, c0 / big
+    wm = ((r0 - T) / (1.0 + T * r0) + (r1 - T) / (1.0 + T * r1)) / 2.0
+    return numpy.stack([r0, r1, (wm + T) / (1.0 - T * wm)], axis=-1)
 
 
 def scaled(k, theta, qk, par, pair):
@@ -103,35 +121,51 @@ def scaled(k, theta, qk, par, pair):
 
 
 def candidates(c, w):
-    """(u1, u2, u3) candidates (..., 64, 3) over the eliminant's roots w: each root with each
-    pair of roots of e12 (in u2) and e31 (in u3) that satisfies e23 nearly as well as the best
-    pair.  More than one pair survives where two solutions share u1 (symmetric
-    configurations, e.g. all legs equal); Newton and de-duplication sort them out."""
+    """(u1, u2, u3) starts (..., 144, 3) over the eliminant's roots w and which are real.
+
+    Each root u1 with each root of e12 (in u2) and of e31 (in u3) that satisfies e23 nearly
+    as well as the best pair; where a leg's two roots nearly coincide (a nearly double
+    root: a forward singularity), also with their midpoint (``quadratic_roots``).  More
+    than one pair survives where two solutions share u1 (symmetric configurations, e.g. all
+    legs equal); Newton and de-duplication sort them out."""
     u1 = (w + T) / (1.0 - T * w)
     pw = numpy.stack([numpy.ones_like(u1), u1, u1 * u1], axis=-1)  # (..., 16, 3)
     u2 = quadratic_roots(numpy.einsum("...ab,...ka->...kb", c[..., 0, :, :], pw))
     u3 = quadratic_roots(numpy.einsum("...ab,...kb->...ka", c[..., 2, :, :], pw))
-    p2 = u2[..., :, None] ** numpy.arange(3)  # (..., 16, 2, 3)
+
+    def close(r):  # the two roots nearly coincide (in the well-scaled chart w)
+        wr = (r[..., :2] - T) / (1.0 + T * r[..., :2])
+        return numpy.abs(wr[..., 0] - wr[..., 1]) <= PAIR_TOL * (1.0 + numpy.abs(wr[..., 0]))
+
+    close2, close3 = close(u2), close(u3)
+    p2 = u2[..., :, None] ** numpy.arange(3)  # (..., 16, 3, 3)
     p3 = u3[..., :, None] ** numpy.arange(3)
-    v2 = numpy.repeat(u2, 2, axis=-1)  # combos (i, j) -> 2 i + j: (..., 16, 4)
-    v3 = numpy.tile(u3, 2)
+    combos = [(i, j) for i in range(3) for j in range(3)]  # combo (i, j) -> 3 i + j
+    v2 = numpy.stack([u2[..., i] for i, _ in combos], axis=-1)  # (..., 16, 9)
+    v3 = numpy.stack([u3[..., j] for _, j in combos], axis=-1)
     res = numpy.stack([numpy.abs((p2[..., i, :] * numpy.einsum(
         "...ab,...kb->...ka", c[..., 1, :, :], p3[..., j, :])).sum(axis=-1)) / (
         (1.0 + numpy.abs(u2[..., i]) ** 2) * (1.0 + numpy.abs(u3[..., j]) ** 2))
-        for i in range(2) for j in range(2)], axis=-1)
-    keep = res <= numpy.maximum(1e3 * res.min(axis=-1, keepdims=True), 1e-7)
+        for i, j in combos], axis=-1)
+    exact = numpy.array([i < 2 and j < 2 for i, j in combos])
+    best = numpy.where(exact, res, numpy.inf).min(axis=-1, keepdims=True)
+    keep = numpy.where(exact, res <= numpy.maximum(1e3 * best, 1e-7), True)
+    allowed = [numpy.ones_like(close2), close2]
+    keep &= numpy.stack([allowed[i == 2][..., :] & [numpy.ones_like(close3), close3][j == 2]
+                         for i, j in combos], axis=-1)
     # Newton starts: the two members of a nearly real pair start apart (Re w +- Im w), so
     # two close real roots that the eigenvalues blurred into a pair are both found
     w1 = w.real + w.imag
     s1 = numpy.broadcast_to(((w1 + T) / (1.0 - T * w1))[..., None], v2.shape)
-    u = numpy.stack([numpy.broadcast_to(u1[..., None], v2.shape), v2, v3], axis=-1)
-    # realness is judged in w = (u - T)/(1 + T u), where the roots are well scaled (u is not:
-    # u -> infinity for a leg turned to theta = pi)
-    wu = (u - T) / (1.0 + T * u)
-    real = keep & (numpy.abs(wu.imag) <= IMAG_TOL * (1.0 + numpy.abs(wu))).all(axis=-1)
+    # realness is judged in w, where the roots are well scaled (u is not: u -> infinity for
+    # a leg turned to theta = pi), and only for u1: near a forward singularity u1 from a
+    # cluster of eliminant roots is slightly complex, and a leg's quadratic with a nearly
+    # double root turns that into roots u2, u3 with large imaginary parts; their real parts
+    # are still good starts, and Newton with the residual test decides what is real
+    real = keep & (numpy.abs(w.imag) <= IMAG_TOL * (1.0 + numpy.abs(w)))[..., None]
     start = numpy.stack([s1, v2.real, v3.real], axis=-1)
     start = numpy.where(real[..., None], start, numpy.nan)
-    n = 4 * DEGREE
+    n = len(combos) * DEGREE
     return start.reshape(start.shape[:-3] + (n, 3)), real.reshape(real.shape[:-2] + (n,))
 
 
@@ -140,10 +174,13 @@ def solve(k, q, par):
     (..., 16, 7) and status (..., 16), real modes first, by decreasing platform height.
 
     The eliminant in u1 is formed per configuration (see ``eliminant``), its roots by
-    the companion matrix; u2 and u3 from e12 and e31 (``candidates``); then Newton steps
-    on (e12, e23, e31) in the joint angles, a residual test, and de-duplication.  A mode
-    where the Jacobian of (e12, e23, e31) is nearly singular (two modes merge: a forward
-    singularity) has the status FORWARD_SINGULAR.
+    the companion matrix; u2 and u3 from e12 and e31 (``candidates``); then clipped Newton
+    steps on (e12, e23, e31) in the joint angles (``newton``), a residual test and
+    de-duplication (``distinct``).  Real solutions are even in number: an odd count sends
+    the nearly singular modes to a search for their lost partner (``partners``).  A mode is
+    OK only where its last Newton step is below STEP_TOL rad and the Jacobian of (e12, e23,
+    e31) is not nearly singular; otherwise (two modes merge: a forward singularity, where
+    the pose is determined only to about sqrt(eps)) it is FORWARD_SINGULAR.
     """
     shape = q.shape[:-1]
     qc = [q[..., i] for i in range(q.shape[-1])]
@@ -161,30 +198,22 @@ def solve(k, q, par):
         # (the mirror images below the base, u large)
         theta = 2.0 * numpy.arctan(u)
         pair = numpy.array([[0, 1], [1, 2], [2, 0]])
-        for _ in range(5):
-            f, jac = scaled(k, theta, qk, par, pair)
-            good = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
-            good &= numpy.abs(numpy.linalg.det(numpy.where(good[..., None, None], jac,
-                                                           numpy.eye(3)))) > 0.0
-            step = numpy.linalg.solve(numpy.where(good[..., None, None], jac, numpy.eye(3)),
-                                      numpy.where(good[..., None], f, 0.0)[..., None])[..., 0]
-            theta = numpy.where(good[..., None], theta - step, theta)
-        f, jac = scaled(k, theta, qk, par, pair)
-        # residuals relative to the largest coefficient of each equation
-        converged = real & (numpy.abs(f) <= RESIDUAL_TOL * raw).all(axis=-1)
-        # a root polished twice (the eigenvalues of a double projection, a blurred pair)
-        # (compared on the unit circle: -pi and pi are one angle)
-        theta = numpy.where(converged[..., None], theta, numpy.nan)
-        point = numpy.exp(1j * theta)
-        for j in range(1, theta.shape[-2]):
-            same = (numpy.abs(point[..., j:j + 1, :] - point[..., :j, :])
-                    <= MERGE_TOL).all(axis=-1).any(axis=-1)
-            converged[..., j] &= ~same
-        theta = numpy.where(converged[..., None], theta, numpy.nan)
-        rows = numpy.linalg.norm(jac, axis=-1).prod(axis=-1)
-        singular = converged & ~(numpy.abs(numpy.linalg.det(
-            numpy.where(converged[..., None, None], jac, numpy.eye(3)))) > SINGULAR_TOL
-            * rows)
+        theta, f, jac, converged = newton(k, theta, qk, par, pair, raw, real)
+        theta, converged = distinct(theta, converged)
+        ratio = singular_ratio(jac)
+        # real solutions come in even number (conjugate pairs; 16 in all): an odd count has
+        # lost the partner of a nearly double root, sought along the Jacobian's null
+        # direction of the most singular mode; still odd, that mode is FORWARD_SINGULAR
+        odd = converged.sum(axis=-1) % 2 == 1
+        if odd.any():
+            theta, converged, ratio, f_odd = partners(k, theta, converged, ratio, jac, qk,
+                                                       par, pair, raw, odd)
+        else:
+            f_odd = numpy.zeros_like(converged)
+        # a mode is OK only where the angles are known to STEP_TOL rad: the last Newton
+        # step is that small (quadratic convergence, a regular root)
+        theta, size = last_step(k, theta, qk, par, pair)
+        singular = converged & ((ratio <= SINGULAR_TOL) | f_odd | ~(size <= STEP_TOL))
         status = numpy.where(converged, numpy.where(singular, FORWARD_SINGULAR, OK),
                              NO_REAL_SOLUTION)
         # the 16 modes: solved ones first (by decreasing platform height), then failures
@@ -219,3 +248,110 @@ def solve(k, q, par):
         half_turn = valid & ~numpy.isfinite(study).all(axis=-1)
         status = numpy.where(half_turn, OUTSIDE_CHART, status).astype(numpy.int8)
     return study, status
+
+
+def newton(k, theta, qk, par, pair, raw, active):
+    """Newton steps on (e12, e23, e31) in the joint angles from ``theta`` (..., n, 3);
+    returns the angles, residuals, Jacobian and which starts converged (residual test).
+
+    At a forward singularity Newton converges only linearly (the error halves per step)
+    from starts that clustered eliminant roots place far off: up to NEWTON_STEPS steps,
+    each clipped to MAX_STEP rad so that a nearly singular Jacobian cannot throw a start
+    into another mode's basin."""
+    for _ in range(NEWTON_STEPS):
+        f, jac = scaled(k, theta, qk, par, pair)
+        good = active & numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
+        if not (good & (numpy.abs(f) > 0.1 * RESIDUAL_TOL * raw).any(axis=-1)).any():
+            break
+        good &= numpy.abs(numpy.linalg.det(numpy.where(good[..., None, None], jac,
+                                                       numpy.eye(3)))) > 0.0
+        step = numpy.linalg.solve(numpy.where(good[..., None, None], jac, numpy.eye(3)),
+                                  numpy.where(good[..., None], f, 0.0)[..., None])[..., 0]
+        size = numpy.abs(step).max(axis=-1, keepdims=True)
+        step = step * numpy.minimum(1.0, MAX_STEP / numpy.maximum(size, 1e-300))
+        theta = numpy.where(good[..., None], theta - step, theta)
+    f, jac = scaled(k, theta, qk, par, pair)
+    # residuals relative to the largest coefficient of each equation
+    converged = active & (numpy.abs(f) <= RESIDUAL_TOL * raw).all(axis=-1)
+    return theta, f, jac, converged
+
+
+def last_step(k, theta, qk, par, pair):
+    """One more (unclipped) Newton step: the angles after it and its size, the estimate of
+    the error of the angles before it (large where the Jacobian is nearly singular)."""
+    f, jac = scaled(k, theta, qk, par, pair)
+    good = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
+    good &= numpy.abs(numpy.linalg.det(numpy.where(good[..., None, None], jac,
+                                                   numpy.eye(3)))) > 0.0
+    step = numpy.linalg.solve(numpy.where(good[..., None, None], jac, numpy.eye(3)),
+                              numpy.where(good[..., None], f, 0.0)[..., None])[..., 0]
+    size = numpy.where(good, numpy.abs(step).max(axis=-1), numpy.inf)
+    return numpy.where(good[..., None], theta - step, theta), size
+
+
+def distinct(theta, converged):
+    """Drop a root polished twice (the eigenvalues of a double projection, a blurred pair),
+    compared on the unit circle (-pi and pi are one angle); NaN where not converged."""
+    theta = numpy.where(converged[..., None], theta, numpy.nan)
+    point = numpy.exp(1j * theta)
+    converged = converged.copy()
+    for j in range(1, theta.shape[-2]):
+        same = (numpy.abs(point[..., j:j + 1, :] - point[..., :j, :])
+                <= MERGE_TOL).all(axis=-1).any(axis=-1)
+        converged[..., j] &= ~same
+    return numpy.where(converged[..., None], theta, numpy.nan), converged
+
+
+def singular_ratio(jac):
+    """|det J| over the product of its row norms: 0 at a forward singularity, 1 at best."""
+    ok = numpy.isfinite(jac).all(axis=(-2, -1))
+    safe = numpy.where(ok[..., None, None], jac, numpy.eye(3))
+    rows = numpy.linalg.norm(safe, axis=-1).prod(axis=-1)
+    return numpy.where(ok, numpy.abs(numpy.linalg.det(safe)) / numpy.where(rows > 0, rows, 1.0),
+                       0.0)
+
+
+def partners(k, theta, converged, ratio, jac, qk, par, pair, raw, odd):
+    """For the samples with an odd number of real modes: Newton from each of their
+    PARTNER_MODES most singular modes (singular ratio below PARTNER_RATIO) displaced along
+    the null direction of its Jacobian (PARTNER_STEPS rad either way); each new root is
+    added in a free slot.  Returns the updated angles, converged flags, ratios, and the
+    modes to flag FORWARD_SINGULAR: the most singular one of a sample still odd."""
+    shape, n = odd.shape, theta.shape[-2]
+    idx = numpy.flatnonzero(odd)
+    th = theta.reshape(-1, n, 3)[idx]
+    conv, rat = converged.reshape(-1, n)[idx], ratio.reshape(-1, n)[idx]
+    jc = jac.reshape(-1, n, 3, 3)[idx]
+    q_sub = [numpy.broadcast_to(v, shape + (1,)).reshape(-1, 1)[idx] for v in qk]
+    raw_sub = numpy.broadcast_to(raw, shape + (1, 3)).reshape(-1, 1, 3)[idx]
+    rows = numpy.arange(len(idx))
+    order = numpy.argsort(numpy.where(conv, rat, numpy.inf), axis=-1, kind="stable")
+    worst = order[:, 0]
+    t = numpy.array([sign * d for d in PARTNER_STEPS for sign in (1.0, -1.0)])
+    for r in range(PARTNER_MODES):
+        mode = order[:, r]
+        near = conv[rows, mode] & (rat[rows, mode] < PARTNER_RATIO)
+        if not near.any():
+            break
+        x0, j0 = th[rows, mode], jc[rows, mode]
+        _, _, vt = numpy.linalg.svd(numpy.where(numpy.isfinite(j0), j0, 0.0))
+        starts = x0[:, None, :] + t[None, :, None] * vt[:, -1, None, :]
+        active = numpy.broadcast_to(near[:, None], starts.shape[:-1])
+        new, _, new_jac, ok = newton(k, starts, q_sub, par, pair, raw_sub, active)
+        for s in range(len(t)):  # each start's root, if new, into a free slot
+            point, old = numpy.exp(1j * new[:, s]), numpy.exp(1j * th)
+            seen = ((numpy.abs(point[:, None, :] - old) <= MERGE_TOL).all(axis=-1)
+                    & conv).any(axis=-1)
+            free = numpy.argmin(conv, axis=-1)
+            add = ok[:, s] & ~seen & ~conv[rows, free]
+            th[rows[add], free[add]] = new[rows[add], s]
+            conv[rows[add], free[add]] = True
+            rat[rows[add], free[add]] = singular_ratio(new_jac[rows[add], s])
+    still = conv.sum(axis=-1) % 2 == 1
+    unpaired = numpy.zeros_like(conv)
+    unpaired[rows[still], worst[still]] = True
+    theta, converged = theta.reshape(-1, n, 3).copy(), converged.reshape(-1, n).copy()
+    ratio, flag = ratio.reshape(-1, n).copy(), numpy.zeros((odd.size, n), dtype=bool)
+    theta[idx], converged[idx], ratio[idx], flag[idx] = th, conv, rat, unpaired
+    return (theta.reshape(shape + (n, 3)), converged.reshape(shape + (n,)),
+            ratio.reshape(shape + (n,)), flag.reshape(shape + (n,)))

@@ -16,6 +16,7 @@ STROKE_LIMIT = 6
 PASSIVE_JOINT_LIMIT = 7
 FORWARD_SINGULAR = 8
 OUTSIDE_CHART = 9
+UNVERIFIED = 10
 
 STATUS = {
     OK: "ok",
@@ -34,8 +35,17 @@ STATUS = {
                       "pose of this mode is returned but not determined to working precision",
     OUTSIDE_CHART: "the platform is turned by a half-turn (x0 = 0), outside the chart x0 = 1 "
                    "in which the closure is written",
+    UNVERIFIED: "the forward-kinematics solution failed its check (a Gauss-Newton step on "
+                "the closure equations did not vanish): a step of the solver divided by a "
+                "pivot near zero, which is not a singularity of the mechanism; no pose is "
+                "returned",
 }
 
 # relative tolerances of the tests above (discriminant against B^2, pivot against its row)
 DISC_RTOL = 1e-10
 DET_RTOL = 1e-12
+# forward kinematics: a solution is accepted where one more Gauss-Newton step changes
+# no unknown by more than VERIFY_RTOL (1 + |x|), and is FORWARD_SINGULAR where the
+# closure's Jacobian (columns scaled by 1 + |x|) has sigma_min / sigma_max below COND_RTOL
+VERIFY_RTOL = 1e-9
+COND_RTOL = 1e-8
