@@ -11,6 +11,7 @@ import importlib
 
 import numpy as np
 import pytest
+from forward_singular_lines import singular_heights
 
 
 def _module(name):
@@ -83,30 +84,6 @@ def _pose_error(a, b):
     return np.abs(d).max(axis=-1)
 
 
-def _singular_heights(m, base, z):
-    """Heights where the generated forward-singularity polynomial changes sign along a
-    vertical line of poses, each bisected to the last bit."""
-    key = next(k for k in m.SINGULARITY_MEANING if k.startswith("det_forward"))
-
-    def value(zz):
-        pose = np.array([*base[:2], zz, *base[3:]])
-        return m.singularities(pose, m.ik(pose, limits=False))[key]
-
-    poses = np.tile(base, (len(z), 1))
-    poses[:, 2] = z
-    v = m.singularities(poses, m.ik(poses, limits=False))[key]
-    s = np.sign(v)
-    out = []
-    for i in np.where(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & (s[:-1] != s[1:]))[0][:2]:
-        a, b, va = z[i], z[i + 1], v[i]
-        for _ in range(60):
-            mid = (a + b) / 2
-            vm = value(mid)
-            a, b, va = (mid, b, vm) if np.sign(vm) == np.sign(va) else (a, mid, va)
-        out.append((a + b) / 2)
-    return out
-
-
 @pytest.mark.parametrize("name,seed,lines,crossings", [("planar_tripod", 11, 12, 5),
                                                        ("tripod_planar", 3, 60, 1)])
 def test_forward_singularities_lose_no_pose(name, seed, lines, crossings):
@@ -122,7 +99,7 @@ def test_forward_singularities_lose_no_pose(name, seed, lines, crossings):
     checked = 0
     for _ in range(lines):
         base = np.array([*rng.uniform(-30, 30, 2), 0.0, *rng.uniform(-0.4, 0.4, 3)])
-        for z_star in _singular_heights(m, base, np.linspace(lo, 340.0, 301)):
+        for z_star in singular_heights(m, base, np.linspace(lo, 340.0, 301)):
             for h in (0.0, 1e-9, -1e-9, 1e-6, -1e-6, 1e-3, -1e-3):
                 pose = np.array([*base[:2], z_star + h, *base[3:]])
                 q = m.ik(pose, limits=False)

@@ -12,6 +12,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 import sympy as sp
+from forward_singular_lines import singular_heights
 
 RNG = np.random.default_rng(33)
 TRIPOD_MODES, PLANAR_MODES = 16, 2
@@ -147,26 +148,6 @@ def test_unassemblable_leg_lengths_are_reported(name):
     assert set(np.unique(status)) <= {m.NO_REAL_SOLUTION}
 
 
-def _sign_change(m, name, base, z):
-    """The first z along the line where the forward-singularity polynomial changes sign,
-    bisected to 1e-9 mm; None when it does not."""
-    key = next(k for k in m.SINGULARITY_MEANING if k.startswith("det_forward"))
-
-    def value(zz):
-        pose = np.array([*base[:2], zz, *base[3:]])
-        return m.singularities(pose, m.ik(pose, limits=False))[key]
-
-    vals = [value(zz) for zz in z]
-    for a, b, va, vb in zip(z[:-1], z[1:], vals[:-1], vals[1:]):
-        if np.sign(va) != np.sign(vb):
-            for _ in range(60):
-                mid = (a + b) / 2
-                vm = value(mid)
-                a, b, va = (mid, b, vm) if np.sign(vm) == np.sign(va) else (a, mid, va)
-            return (a + b) / 2
-    return None
-
-
 @pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar"])
 def test_forward_singularity_is_where_two_assembly_modes_merge(name):
     """At a zero of det d(e12, e23, e31)/d(u) along a line in z, the pose's assembly mode
@@ -175,8 +156,9 @@ def test_forward_singularity_is_where_two_assembly_modes_merge(name):
     z* the nearest other mode is far."""
     m = _module(name)
     base = np.array([5.0, -3.0, 0.0, 0.3, -0.2, 0.1])
-    z_star = _sign_change(m, name, base, np.linspace(40.0, 300.0, 131))
-    assert z_star is not None, "the line crosses a forward singularity"
+    crossings = singular_heights(m, base, np.linspace(40.0, 300.0, 131), count=1)
+    assert crossings, "the line crosses a forward singularity"
+    z_star = crossings[0]
 
     def other_mode(zz):
         pose = np.array([*base[:2], zz, *base[3:]])

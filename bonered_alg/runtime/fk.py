@@ -23,19 +23,25 @@ from .status import (
 )
 
 
+def closure_system(spec, q, study, par):
+    """Residuals f (..., m) of the leg generators and their Jacobian (..., m, n) in the
+    unknowns, at the back-substituted Study coordinates ``study``."""
+    n = len(spec.unknowns)
+    shape = study.shape[:-1]
+    values = spec.newton(*columns(study), *columns(q), *par)
+    vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape) for v in values]
+    m = len(vals) // (n + 1)
+    return (numpy.stack(vals[:m], axis=-1),
+            numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n)))
+
+
 def polish(spec, q, study, par, iterations=6):
     """Gauss-Newton steps on the (well-conditioned) leg generators, from the lex-basis
     solution: ``(J^T J) step = J^T f`` (the plain Newton step when J is square)."""
     n = len(spec.unknowns)
-    shape = study.shape[:-1]
-    qc = columns(q)
     for _ in range(iterations):
         with numpy.errstate(all="ignore"):
-            values = spec.newton(*columns(study), *qc, *par)
-            vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape) for v in values]
-            m = len(vals) // (n + 1)
-            f = numpy.stack(vals[:m], axis=-1)
-            jac = numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n))
+            f, jac = closure_system(spec, q, study, par)
             jtj = numpy.swapaxes(jac, -1, -2) @ jac
             jtf = numpy.swapaxes(jac, -1, -2) @ f[..., None]
             ok = numpy.all(numpy.isfinite(jtj), axis=(-2, -1)) & numpy.all(
@@ -56,14 +62,8 @@ def verify(spec, q, study, par, status):
     column-scaled Jacobian is nearly rank deficient is FORWARD_SINGULAR (two assembly modes
     merge); elsewhere a verified mode is OK even where a quadratic step of the basis had a
     double root (ON_BOUNDARY there means a double root of the basis, not a boundary)."""
-    n = len(spec.unknowns)
-    shape = study.shape[:-1]
     with numpy.errstate(all="ignore"):
-        values = spec.newton(*columns(study), *columns(q), *par)
-        vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape) for v in values]
-        m = len(vals) // (n + 1)
-        f = numpy.stack(vals[:m], axis=-1)
-        jac = numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n))
+        f, jac = closure_system(spec, q, study, par)
         finite = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
         finite &= numpy.isfinite(study).all(axis=-1)
         scale = 1.0 + numpy.abs(numpy.where(finite[..., None], study, 0.0))

@@ -150,8 +150,8 @@ def candidates(c, w):
     exact = numpy.array([i < 2 and j < 2 for i, j in combos])
     best = numpy.where(exact, res, numpy.inf).min(axis=-1, keepdims=True)
     keep = numpy.where(exact, res <= numpy.maximum(1e3 * best, 1e-7), True)
-    allowed = [numpy.ones_like(close2), close2]
-    keep &= numpy.stack([allowed[i == 2][..., :] & [numpy.ones_like(close3), close3][j == 2]
+    ones = numpy.ones_like(close2)
+    keep &= numpy.stack([(close2 if i == 2 else ones) & (close3 if j == 2 else ones)
                          for i, j in combos], axis=-1)
     # Newton starts: the two members of a nearly real pair start apart (Re w +- Im w), so
     # two close real roots that the eigenvalues blurred into a pair are both found
@@ -206,14 +206,14 @@ def solve(k, q, par):
         # direction of the most singular mode; still odd, that mode is FORWARD_SINGULAR
         odd = converged.sum(axis=-1) % 2 == 1
         if odd.any():
-            theta, converged, ratio, f_odd = partners(k, theta, converged, ratio, jac, qk,
+            theta, converged, ratio, unpaired = partners(k, theta, converged, ratio, jac, qk,
                                                        par, pair, raw, odd)
         else:
-            f_odd = numpy.zeros_like(converged)
+            unpaired = numpy.zeros_like(converged)
         # a mode is OK only where the angles are known to STEP_TOL rad: the last Newton
         # step is that small (quadratic convergence, a regular root)
         theta, size = last_step(k, theta, qk, par, pair)
-        singular = converged & ((ratio <= SINGULAR_TOL) | f_odd | ~(size <= STEP_TOL))
+        singular = converged & ((ratio <= SINGULAR_TOL) | unpaired | ~(size <= STEP_TOL))
         status = numpy.where(converged, numpy.where(singular, FORWARD_SINGULAR, OK),
                              NO_REAL_SOLUTION)
         # the 16 modes: solved ones first (by decreasing platform height), then failures
@@ -263,10 +263,7 @@ def newton(k, theta, qk, par, pair, raw, active):
         good = active & numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
         if not (good & (numpy.abs(f) > 0.1 * RESIDUAL_TOL * raw).any(axis=-1)).any():
             break
-        good &= numpy.abs(numpy.linalg.det(numpy.where(good[..., None, None], jac,
-                                                       numpy.eye(3)))) > 0.0
-        step = numpy.linalg.solve(numpy.where(good[..., None, None], jac, numpy.eye(3)),
-                                  numpy.where(good[..., None], f, 0.0)[..., None])[..., 0]
+        step, good = newton_step(f, jac, good)
         size = numpy.abs(step).max(axis=-1, keepdims=True)
         step = step * numpy.minimum(1.0, MAX_STEP / numpy.maximum(size, 1e-300))
         theta = numpy.where(good[..., None], theta - step, theta)
@@ -276,15 +273,22 @@ def newton(k, theta, qk, par, pair, raw, active):
     return theta, f, jac, converged
 
 
+def newton_step(f, jac, good):
+    """The Newton step J^-1 f where ``good`` and J is invertible (zero elsewhere), and
+    where it was taken."""
+    good = good & (numpy.abs(numpy.linalg.det(numpy.where(good[..., None, None], jac,
+                                                          numpy.eye(3)))) > 0.0)
+    step = numpy.linalg.solve(numpy.where(good[..., None, None], jac, numpy.eye(3)),
+                              numpy.where(good[..., None], f, 0.0)[..., None])[..., 0]
+    return step, good
+
+
 def last_step(k, theta, qk, par, pair):
     """One more (unclipped) Newton step: the angles after it and its size, the estimate of
     the error of the angles before it (large where the Jacobian is nearly singular)."""
     f, jac = scaled(k, theta, qk, par, pair)
     good = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
-    good &= numpy.abs(numpy.linalg.det(numpy.where(good[..., None, None], jac,
-                                                   numpy.eye(3)))) > 0.0
-    step = numpy.linalg.solve(numpy.where(good[..., None, None], jac, numpy.eye(3)),
-                              numpy.where(good[..., None], f, 0.0)[..., None])[..., 0]
+    step, good = newton_step(f, jac, good)
     size = numpy.where(good, numpy.abs(step).max(axis=-1), numpy.inf)
     return numpy.where(good[..., None], theta - step, theta), size
 
