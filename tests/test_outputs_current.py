@@ -1,11 +1,14 @@
-"""generated/ and derivations/ are up to date with the code, deterministic, and incremental."""
+"""generated/ and derivations/ are up to date with the code, deterministic, and incremental.
+
+That a re-derivation reproduces every committed output byte for byte is checked where it
+costs minutes, not in this suite: CI runs ``derive --force`` and ``git diff --exit-code``
+(``.ci/run``).  Here: the committed outputs carry the hash of the current sources."""
 
 import shutil
 import subprocess
 import sys
 
 import pytest
-from conftest import record_of
 
 from bonered_alg.pipeline import outputs
 from bonered_alg.pipeline.provenance import derivation_hash
@@ -18,19 +21,6 @@ from tests.conftest import ROOT
 @pytest.mark.parametrize("name", REGISTRY)
 def test_committed_outputs_carry_current_hash(name):
     assert outputs.recorded_hash(ROOT, name) == current_hash(name)
-
-
-@pytest.mark.parametrize("name", REGISTRY)
-def test_rederivation_is_byte_identical(name):
-    """Every file the derivation writes (module, report, verdicts, tables, plots) equals the
-    committed one byte for byte, and no committed file of the mechanism is left over."""
-    files = outputs.files(record_of(name))
-    for rel, content in files.items():
-        data = content if isinstance(content, bytes) else content.encode()
-        assert (ROOT / rel).read_bytes() == data, rel
-    committed = {p.relative_to(ROOT).as_posix() for p in (ROOT / "derivations").glob(f"{name}.*")
-                 if p.suffix not in (".pdf", ".aux", ".log", ".fls", ".fdb_latexmk", ".out")}
-    assert committed <= set(files), sorted(committed - set(files))
 
 
 def test_study_algebra_record_is_current():

@@ -39,6 +39,8 @@ class IKModuleSpec:
     singularities: Sequence[tuple[str, sp.Expr, str]]
     fk_steps: Sequence[IKStep] = ()
     fk_unknowns: Sequence[sp.Symbol] = ()
+    # other plans for the same fk_unknowns (lex bases in other elimination orders)
+    fk_charts: Sequence[Sequence[IKStep]] = ()
     study_to_pose: dict[sp.Symbol, sp.Expr] | None = None
     fk_system: Sequence[sp.Expr] = ()  # leg generators, for Gauss-Newton polishing of fk
     constants: dict[sp.Symbol, sp.Expr] | None = None  # algebraic constants -> exact values
@@ -216,6 +218,13 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
     bit = len(mode_bits)
     fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
     kernels += fk_kernels
+    fk_charts = []
+    for c, chart in enumerate(spec.fk_charts, start=1):
+        chart_kernels, chart_src, _ = _step_kernels(f"fkchart{c}_step", chart, spec.joints,
+                                                    par, {})
+        kernels += chart_kernels
+        fk_charts.append((_step_rows(chart_src),
+                          tuple(list(spec.fk_unknowns).index(st.joint) for st in chart)))
     has_fk = bool(spec.fk_steps or spec.rps)
     if spec.rps:
         kernels += RPSEliminant().kernels(spec.rps, spec.joints, par)
@@ -348,6 +357,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
         "limit_kernel": "_limit_values" if spec.limits else "None",
         "rps_kernels": rps_kernels,
         "fk_index": tuple(list(spec.fk_unknowns).index(st.joint) for st in spec.fk_steps),
+        "fk_charts": fk_charts,
         "fk_newton": "_fk_newton" if spec.fk_steps else "None",
         "fk_pose": "_fk_pose" if has_fk else "None",
         "pose_functions": pose_functions, "functions": functions,
@@ -378,6 +388,8 @@ def module_source(d, generator: str):
         rps=rps_fk.system if rps_fk else None,
         rps_unknowns=m.closure_named(rps_fk.closure).pose if rps_fk else (),
         fk_unknowns=[s.joint for f in d.fk for s in f.steps],
+        fk_charts=[[s for g in d.fk for s in (alt if g is f else g.steps)]
+                   for f in d.fk for alt in f.alternates],
         fk_system=[g for f in d.fk if f.system is None for g in f.problem.equations],
         study_to_pose=dict(m.pose.from_study) if m.pose.from_study else None,
         constants=d.constants, fk_note=d.fk_note,

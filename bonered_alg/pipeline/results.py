@@ -82,6 +82,9 @@ class ClosureFK:
     system: Any = None  # e.g. kinematics.rps_forward.RPSSystem
     count_at: Mapping | None = None
     singularity: FactoredPolynomial | None = None
+    # plans from the lex bases in other orders of the unknowns, regular where a pivot of
+    # ``steps`` vanishes (``solvers.closures.TriangularLexBasis._alternates``)
+    alternates: tuple[tuple[IKStep, ...], ...] = ()
 
 
 @dataclass(frozen=True)

@@ -247,9 +247,48 @@ def _section_fk(d) -> list[str]:
             out.append(broken_math(f"b_{{{k}}}", g, width=110))
         out.append("Back-substitution order: " + ", ".join(
             f"${latex(s.joint)}$ (degree {s.degree})" for s in f.steps) + ".")
+        out += _alternate_plans(f)
     out.append(f"Assembly modes of the whole: {total} (the product over the closures); "
                r"the generated \texttt{fk} returns every one of them, NaN where a mode is not "
                "real, real modes of a 3-RPS closure first.")
+    return out
+
+
+def _alternate_plans(f) -> list[str]:
+    """The plans from other elimination orders and why they are there."""
+    if not f.alternates:
+        return []
+
+    def pivot(b):  # in full where it is short, else its size (long ones run off the page)
+        text = latex(sp.factor(b))
+        if len(text) <= 80:
+            return f"${text}$"
+        free = sorted(b.free_symbols, key=str)
+        return (f"a polynomial of total degree {sp.Poly(b, *free).total_degree()} with "
+                f"{len(sp.Add.make_args(sp.expand(b)))} terms in "
+                + ", ".join(f"${latex(x)}$" for x in free))
+
+    def pivots(steps):
+        return ", ".join(f"${latex(s.joint)}$: {pivot(s.B)}" for s in steps
+                         if s.degree == 1 and s.B.free_symbols) or "none"
+
+    out = ["Pivots of the linear steps that can vanish: " + pivots(f.steps) + ". Where one "
+           "vanishes the basis divides by zero although the closure need not be singular "
+           "there. The lex bases in the other orders of the unknowns "
+           "give these plans, whose pivots share no factor with the first plan's (gcd 1, "
+           "checked symbolically), so both divide by zero only where their pivots vanish "
+           "together, a set of codimension two:"]
+    for k, alt in enumerate(f.alternates, 1):
+        out.append(f"plan {k + 1}: order " + ", ".join(
+            f"${latex(s.joint)}$ (degree {s.degree})" for s in alt) + "; pivots "
+            + pivots(alt) + ".")
+    out.append(r"The generated \texttt{fk} checks every mode of the first plan by a "
+               "Gauss-Newton step on the leg generators; a mode that fails is taken from "
+               "the other plans (status OK or FORWARD\\_SINGULAR after the same check), and "
+               "where none gives it the mode is UNVERIFIED (NaN), never a wrong pose. A locus "
+               "where only the first plan's pivot vanishes is therefore an artefact of the "
+               "basis, not a singularity: there the other plan solves, and the closure's "
+               "Jacobian, checked at each returned mode, is regular.")
     return out
 
 

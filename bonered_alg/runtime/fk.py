@@ -16,6 +16,7 @@ from .status import (
     COND_RTOL,
     FORWARD_SINGULAR,
     INPUT_SINGULAR,
+    NO_REAL_SOLUTION,
     OK,
     ON_BOUNDARY,
     UNVERIFIED,
@@ -86,6 +87,70 @@ def verify(spec, q, study, par, status):
     return study, numpy.where(solved, new, status).astype(numpy.int8)
 
 
+def checked_mode(spec, steps, index, q, mode, par, with_status):
+    """Study coordinates (..., n) and status of one mode of a back-substitution plan,
+    polished and checked (``verify``)."""
+    study, status = backsubstitute(q, steps, index, len(spec.unknowns), mode, par,
+                                   with_status)
+    return verify(spec, q, polish(spec, q, study, par), par, status)
+
+
+def primary_mode(spec, q, study, par):
+    """The mode of ``spec.steps`` a solution belongs to: bit b is set where the quadratic
+    step with bit b has 2 A x + B < 0 at the solution (its ``-sqrt`` root)."""
+    mode = numpy.zeros(study.shape[:-1], dtype=int)
+    qc = columns(q)
+    with numpy.errstate(all="ignore"):
+        for k, (degree, kern, bit) in enumerate(spec.steps):
+            if degree != 2:
+                continue
+            before = [study[..., spec.index[j]] for j in range(k)]
+            a, b, _ = kern(*qc, *before, *par)
+            x = study[..., spec.index[k]]
+            mode = mode | ((2.0 * a * x + b < 0.0).astype(int) << bit)
+    return mode
+
+
+def from_charts(spec, q, par, solved):
+    """The modes of ``spec.steps`` that failed (NaN), filled from the other elimination
+    orders' plans (``spec.charts``) where these give a checked solution not returned yet:
+    in the slot of the mode it belongs to (``primary_mode``), else in the first free slot
+    (on a locus where the first basis has a double root the two modes are one slot).  A
+    mode still unsolved (UNVERIFIED, or a division by an exactly zero pivot) where every
+    mode of a chart has no real solution is NO_REAL_SOLUTION: that chart solves there."""
+    studies = numpy.stack([st for st, _ in solved], axis=-2)  # (..., M, n)
+    with_status = solved[0][1] is not None
+    statuses = numpy.stack([s for _, s in solved], axis=-1) if with_status else None
+    n_modes = studies.shape[-2]
+    slots = numpy.arange(n_modes)
+    for steps, index in spec.charts:
+        bits = sum(1 for degree, _, _ in steps if degree == 2)
+        none_real = numpy.ones(studies.shape[:-2], dtype=bool)
+        for m in range(2 ** bits):
+            study, status = checked_mode(spec, steps, index, q, m, par, True)
+            none_real &= status == NO_REAL_SOLUTION
+            good = numpy.isfinite(study).all(axis=-1)
+            scale = 1.0 + numpy.abs(study[..., None, :])
+            with numpy.errstate(invalid="ignore"):
+                same = (numpy.abs(studies - study[..., None, :]) <= 1e-7 * scale).all(axis=-1)
+            free = numpy.isnan(studies).any(axis=-1)
+            good &= ~same.any(axis=-1) & free.any(axis=-1)
+            want = primary_mode(spec, q, study, par)
+            first_free = numpy.argmax(free, axis=-1)
+            slot = numpy.where(numpy.take_along_axis(free, want[..., None], axis=-1)[..., 0],
+                               want, first_free)
+            put = good[..., None] & (slots == slot[..., None])  # (..., M)
+            studies = numpy.where(put[..., None], study[..., None, :], studies)
+            if with_status:
+                statuses = numpy.where(put, status[..., None], statuses).astype(numpy.int8)
+        if with_status:  # a chart regular here finds no real solution: there is none
+            unsolved = numpy.isnan(studies).any(axis=-1)
+            statuses = numpy.where(none_real[..., None] & unsolved, NO_REAL_SOLUTION,
+                                   statuses).astype(numpy.int8)
+    return [(studies[..., m, :], statuses[..., m] if with_status else None)
+            for m in range(n_modes)]
+
+
 def input_singular(model, pose, q, par, status):
     """INPUT_SINGULAR for a real mode at which a pivot of Ji vanishes: the pose solves the
     closure equations, but the joints do not determine it (e.g. a planar 3-PRP stage turned
@@ -109,13 +174,12 @@ def solve_all(model, q, par, with_status):
     solved = []  # the back-substitution modes do not depend on the eliminant's mode
     for m in range(2 ** len(spec.mode_bits)):
         if spec.steps:
-            study, status = backsubstitute(q, spec.steps, spec.index, len(spec.unknowns), m,
-                                           par, with_status)
-            study, status = verify(spec, q, polish(spec, q, study, par), par, status)
-            solved.append((study, status))
+            solved.append(checked_mode(spec, spec.steps, spec.index, q, m, par, with_status))
         else:
             solved.append((numpy.zeros(shape + (0,)),
                            numpy.zeros(shape, dtype=numpy.int8) if with_status else None))
+    if spec.charts and any(numpy.isnan(study).any() for study, _ in solved):
+        solved = from_charts(spec, q, par, solved)
     poses, statuses = [], []
     for r in range(rps.shape[-2]):
         for study, status in solved:

@@ -45,7 +45,8 @@ class ForwardKinematics:
     """The forward-kinematics tables: ``modes`` assembly modes (0: not generated, ``note``
     says why), an eliminant closure (``rps``), back-substitution ``steps`` for the
     ``unknowns`` (Study coordinates of the triangular closures) with their Newton kernel,
-    and ``pose``, the pose coordinates from the solved Study coordinates."""
+    ``pose``, the pose coordinates from the solved Study coordinates, and ``charts``,
+    other plans of the same unknowns for where a mode of ``steps`` fails its check."""
 
     modes: int = 0
     note: str = ""
@@ -56,6 +57,8 @@ class ForwardKinematics:
     mode_bits: tuple = ()
     newton: Kernel | None = None
     pose: Kernel | None = None
+    # (steps, index) of the same unknowns from lex bases in other elimination orders
+    charts: tuple = ()
 
 
 @dataclass(frozen=True)

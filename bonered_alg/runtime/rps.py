@@ -28,6 +28,8 @@ RESIDUAL_TOL = 1e-9
 MERGE_TOL = 1e-7
 SINGULAR_TOL = 1e-6
 STEP_TOL = 1e-10
+# a Newton lane stops once its step is below this (rad)
+STEP_STOP = 1e-14
 # two roots of a leg's quadratic closer than this (chart w) get their midpoint as a start
 PAIR_TOL = 0.2
 NEWTON_STEPS = 16
@@ -199,6 +201,7 @@ def solve(k, q, par):
         theta = 2.0 * numpy.arctan(u)
         pair = numpy.array([[0, 1], [1, 2], [2, 0]])
         theta, f, jac, converged = newton(k, theta, qk, par, pair, raw, real)
+        theta, jac, converged = compact(theta, jac, converged)
         theta, converged = distinct(theta, converged)
         ratio = singular_ratio(jac)
         # real solutions come in even number (conjugate pairs; 16 in all): an odd count has
@@ -250,6 +253,22 @@ def solve(k, q, par):
     return study, status
 
 
+def lanes(theta, qk, par):
+    """The starts (..., n, 3) as a flat list of lanes (L, 3), with the joints and
+    parameters of each lane (the solver works on the lanes still running only)."""
+    shape = theta.shape[:-1]
+    qf = [numpy.broadcast_to(v, shape).reshape(-1) for v in qk]
+    pf = [p if numpy.ndim(p) == 0 else numpy.broadcast_to(numpy.asarray(p)[..., None],
+                                                          shape).reshape(-1) for p in par]
+    return theta.reshape(-1, 3).copy(), qf, pf
+
+
+def scaled_at(k, th, qf, pf, pair, idx):
+    """``scaled`` on the lanes ``idx`` only."""
+    return scaled(k, th[idx], [v[idx] for v in qf],
+                  [p if numpy.ndim(p) == 0 else p[idx] for p in pf], pair)
+
+
 def newton(k, theta, qk, par, pair, raw, active):
     """Newton steps on (e12, e23, e31) in the joint angles from ``theta`` (..., n, 3);
     returns the angles, residuals, Jacobian and which starts converged (residual test).
@@ -257,20 +276,32 @@ def newton(k, theta, qk, par, pair, raw, active):
     At a forward singularity Newton converges only linearly (the error halves per step)
     from starts that clustered eliminant roots place far off: up to NEWTON_STEPS steps,
     each clipped to MAX_STEP rad so that a nearly singular Jacobian cannot throw a start
-    into another mode's basin."""
+    into another mode's basin.  Each step works on the lanes still running: those active,
+    finite, with an invertible Jacobian and a last step above STEP_STOP rad (converged
+    quadratically; a lane near a fold keeps going)."""
+    shape = theta.shape[:-1]
+    th, qf, pf = lanes(theta, qk, par)
+    rawf = numpy.broadcast_to(raw, shape + (3,)).reshape(-1, 3)
+    act = numpy.broadcast_to(active, shape).reshape(-1) & numpy.isfinite(th).all(axis=-1)
+    idx = numpy.flatnonzero(act)
     for _ in range(NEWTON_STEPS):
-        f, jac = scaled(k, theta, qk, par, pair)
-        good = active & numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
-        if not (good & (numpy.abs(f) > 0.1 * RESIDUAL_TOL * raw).any(axis=-1)).any():
+        if not idx.size:
             break
+        f, jac = scaled_at(k, th, qf, pf, pair, idx)
+        good = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
         step, good = newton_step(f, jac, good)
         size = numpy.abs(step).max(axis=-1, keepdims=True)
         step = step * numpy.minimum(1.0, MAX_STEP / numpy.maximum(size, 1e-300))
-        theta = numpy.where(good[..., None], theta - step, theta)
-    f, jac = scaled(k, theta, qk, par, pair)
+        th[idx] -= numpy.where(good[..., None], step, 0.0)
+        idx = idx[good & (size[..., 0] > STEP_STOP)]
+    idx = numpy.flatnonzero(act)
+    f = numpy.full(th.shape, numpy.nan)
+    jac = numpy.full(th.shape + (3,), numpy.nan)
+    f[idx], jac[idx] = scaled_at(k, th, qf, pf, pair, idx)
     # residuals relative to the largest coefficient of each equation
-    converged = active & (numpy.abs(f) <= RESIDUAL_TOL * raw).all(axis=-1)
-    return theta, f, jac, converged
+    converged = act & (numpy.abs(f) <= RESIDUAL_TOL * rawf).all(axis=-1)
+    return (th.reshape(theta.shape), f.reshape(shape + (3,)), jac.reshape(shape + (3, 3)),
+            converged.reshape(shape))
 
 
 def newton_step(f, jac, good):
@@ -284,13 +315,32 @@ def newton_step(f, jac, good):
 
 
 def last_step(k, theta, qk, par, pair):
-    """One more (unclipped) Newton step: the angles after it and its size, the estimate of
-    the error of the angles before it (large where the Jacobian is nearly singular)."""
-    f, jac = scaled(k, theta, qk, par, pair)
-    good = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
-    step, good = newton_step(f, jac, good)
-    size = numpy.where(good, numpy.abs(step).max(axis=-1), numpy.inf)
-    return numpy.where(good[..., None], theta - step, theta), size
+    """One more (unclipped) Newton step on the finite lanes: the angles after it and its
+    size, the estimate of the error of the angles before it (large where the Jacobian is
+    nearly singular; infinite where no step was taken)."""
+    shape = theta.shape[:-1]
+    th, qf, pf = lanes(theta, qk, par)
+    idx = numpy.flatnonzero(numpy.isfinite(th).all(axis=-1))
+    size = numpy.full(th.shape[0], numpy.inf)
+    if idx.size:
+        f, jac = scaled_at(k, th, qf, pf, pair, idx)
+        good = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
+        step, good = newton_step(f, jac, good)
+        th[idx] -= numpy.where(good[..., None], step, 0.0)
+        size[idx] = numpy.where(good, numpy.abs(step).max(axis=-1), numpy.inf)
+    return th.reshape(theta.shape), size.reshape(shape)
+
+
+def compact(theta, jac, converged):
+    """The converged lanes of each sample moved to the front (in their order), the lanes
+    cut to the largest count in the batch (at least DEGREE + 1: free slots for ``partners``
+    and 16 modes to return): de-duplication then compares a few lanes, not 144."""
+    order = numpy.argsort(~converged, axis=-1, kind="stable")
+    keep = max(int(converged.sum(axis=-1).max(initial=0)), DEGREE + 1)
+    order = order[..., :keep]
+    return (numpy.take_along_axis(theta, order[..., None], axis=-2),
+            numpy.take_along_axis(jac, order[..., None, None], axis=-3),
+            numpy.take_along_axis(converged, order, axis=-1))
 
 
 def distinct(theta, converged):

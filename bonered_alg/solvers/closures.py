@@ -15,6 +15,7 @@ generated forward kinematics, and the reason is reported.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 
 import sympy as sp
 
@@ -35,6 +36,8 @@ from ..kinematics.singularities import factored
 from ..pipeline.results import ClosureFK
 
 FK_BUDGET_S = 120.0
+# back-substitution plans from other elimination orders kept per closure (at most)
+MAX_ALTERNATES = 2
 
 
 class NotSolvable(Exception):
@@ -110,6 +113,15 @@ class TriangularLexBasis:
         primal = set().union(*(sp.sympify(c).free_symbols for c in closure.platform[:4]))
         pose_unknowns = tuple(sorted((y for y in closure.pose if y in syms),
                                      key=lambda y: y in primal))
+        problem, result, steps, count = self._order(mech, closure, gens, syms, pose_unknowns,
+                                                    algebra)
+        return ClosureFK(closure.name, self.name, problem, result, 0, count, tuple(steps),
+                         alternates=self._alternates(mech, closure, gens, syms, pose_unknowns,
+                                                     steps, algebra))
+
+    def _order(self, mech, closure, gens, syms, pose_unknowns, algebra):
+        """The lex basis with the pose unknowns in the given order (the first is solved
+        last), its solution count and its back-substitution steps."""
         # algebraic constants are the last (lowest) unknowns, bound by their minimal
         # polynomials; they are not solved for but substituted (generators stay valid)
         consts = [c for c in mech.constants if c.symbol in syms]
@@ -142,7 +154,35 @@ class TriangularLexBasis:
         except NotImplementedError as exc:
             raise NotSolvable(f"{exc} ({count} solutions; univariate steps of higher degree "
                               "are not generated yet)") from None
-        return ClosureFK(closure.name, self.name, problem, result, dim, count, tuple(steps))
+        return problem, result, steps, count
+
+    def _alternates(self, mech, closure, gens, syms, pose_unknowns, steps, algebra):
+        """Back-substitution plans from the lex bases in the other orders of the pose
+        unknowns, where a linear step of ``steps`` divides by a pivot that can vanish
+        (Pro-Hep-LCT's lower closure: 8 l1 (t1^2 - w1^2) with l1 = l3).  The runtime solves
+        through them where the first plan's solution fails its check; an order whose plan
+        is not triangular, or whose pivots share a factor with the first plan's, is
+        skipped (it would fail at the same points)."""
+        pivots = [sp.factor_list(st.B)[1] for st in steps
+                  if st.degree == 1 and st.B.free_symbols]
+        if not pivots:
+            return ()
+        bad = {f for factors in pivots for f, _ in factors if f.free_symbols}
+        out = []
+        for order in itertools.permutations(pose_unknowns):
+            if order == pose_unknowns:
+                continue
+            try:
+                _, _, alt, _ = self._order(mech, closure, gens, syms, order, algebra)
+            except NotSolvable:
+                continue
+            alt_factors = {f for st in alt if st.degree == 1 and st.B.free_symbols
+                           for f, _ in sp.factor_list(st.B)[1] if f.free_symbols}
+            if not any(sp.gcd(f, g) != 1 for f in bad for g in alt_factors):
+                out.append(tuple(alt))
+            if len(out) == MAX_ALTERNATES:
+                break
+        return tuple(out)
 
 
 CLOSURE_SOLVERS = (RPSEliminant(), TriangularLexBasis())
