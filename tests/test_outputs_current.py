@@ -23,6 +23,19 @@ def test_committed_outputs_carry_current_hash(name):
     assert outputs.recorded_hash(ROOT, name) == current_hash(name)
 
 
+def test_committed_outputs_were_derived_with_this_toolchain():
+    """derivations/toolchain.json names the Groebner engine release and the pinned packages
+    the outputs were derived with; another Singular, or other package versions, must be
+    seen, not silently trusted (re-derive with `make derive-force` and compare)."""
+    from bonered_alg.elimination.engines import get_engine
+    from bonered_alg.pipeline import toolchain
+
+    recorded = toolchain.recorded(ROOT)
+    assert recorded is not None, "derivations/toolchain.json is missing: run `make derive`"
+    assert recorded == toolchain.current(ROOT, get_engine()), (
+        f"derived with {recorded}, this machine has {toolchain.current(ROOT, get_engine())}")
+
+
 def test_study_algebra_record_is_current():
     from bonered_alg.papers import study_algebra
 

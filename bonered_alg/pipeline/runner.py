@@ -8,9 +8,9 @@ from dataclasses import replace
 from pathlib import Path
 from types import ModuleType
 
-from ..elimination.engines import DEFAULT_BUDGET_S, Engine
+from ..elimination.engines import DEFAULT_BUDGET_S, Engine, get_engine
 from ..registry import REGISTRY, load, module_path
-from . import outputs, stages
+from . import outputs, stages, toolchain
 from .algebra import Algebra
 from .provenance import derivation_hash
 from .results import Derivation, Record, frozen_map
@@ -57,7 +57,8 @@ def write(record: Record, root: Path) -> list[Path]:
 def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
                engine: Engine | None = None, log=print) -> dict[str, str]:
     """Derive and write each mechanism whose outputs are missing or out of date, and the
-    record of the Study-parameter framework (``papers/study_algebra.py``)."""
+    record of the Study-parameter framework (``papers/study_algebra.py``); where anything
+    was derived, the record of the engine and packages used (:mod:`.toolchain`)."""
     from ..papers import study_algebra
 
     status = {}
@@ -75,4 +76,6 @@ def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
         log(f"{name}: derived in {time.perf_counter() - t0:.1f} s; wrote "
             + (", ".join(str(p.relative_to(root)) for p in changed) or "nothing new"))
         status[name] = "derived"
+    if "derived" in status.values() or toolchain.recorded(root) is None:
+        toolchain.write(root, engine or get_engine())
     return status
