@@ -491,9 +491,16 @@ def _verify_singularities(deriv) -> list:
                - qs6 * (c_ - _SQ3 * s_)]
     sum51 = 3 * rb * (_SQ3 * c_ - s_) - (qs4 + qs5 + qs6) * (c_ - _SQ3 * s_)
     ok51 = sp.simplify(sum(entries) - sum51) == 0
-    out.append(Verdict("001 eq. (51)", "J_D13 + J_D23 + J_D33 in terms of q4 + q5 + q6",
-                       "confirmed-symbolic" if ok51 else "erratum", None,
-                       "sum of the printed eq. (40), (43), (46)"))
+    ok51_det = sp.simplify(jd.det().subs(dict(zip((j13, j23, j33), entries))) - sum51) == 0
+    out.append(Verdict(
+        "001 eq. (51)", "det J_D = 3 rb (sqrt3 c g - s g) - (q4 + q5 + q6)(c g - sqrt3 s g)",
+        "confirmed-symbolic" if ok51_det else "erratum", None,
+        ("the right side is J_D13 + J_D23 + J_D33, the sum of the printed eq. (40), (43), (46) "
+         "(checked symbolically), which by eq. (50) is det J_D / (2 sqrt3), not det J_D: the "
+         "left side should read J_D13 + J_D23 + J_D33 (or the right side carry the factor "
+         "2 sqrt3); the zeros, and so eq. (52)-(53), are not affected" if ok51 else
+         "the right side is not the sum of the printed eq. (40), (43), (46), and not det J_D")
+        + (" (eq. (50) itself is confirmed)" if ok50 else "")))
     # eq. (52)-(53): substitute eq. (21)-(23)
     q_sub = dict(zip((qs4, qs5, qs6), _printed_eq21(x2s, y2s, gp_)))
     got = sp.simplify(sp.expand_trig(sum51.subs(q_sub)))
