@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..workspace.components import HomeComponent, home_component, signs_near_reachable
 from ..workspace.grid import Axis, Grid, fixed_from_user
 from ..workspace.membership import DEFAULT_CRITERIA, Criteria, load_module
 from ..workspace.ranges import coordinate_range
@@ -171,12 +172,18 @@ class Table2Setup:
 PLANAR_STROKES_001 = (120.0, 325.0)  # 001 Sect. 3, the double-triangular stage's range
 
 
-def table2_setups() -> list[Table2Setup]:
+def table2_setups(recovered: tuple[float, float] | None = None) -> list[Table2Setup]:
+    """The 000 Table 2 set-ups; ``recovered``: a planar stroke range (mm) found by
+    :mod:`.planar_stroke_000`, added as one more planar-only variant."""
     mid = sum(TABLE1_000["q"]) / 2
     h_hybrid = mid_stroke_height("planar_tripod", (3, 4, 5), mid)
+    extra = [] if recovered is None else [
+        Table2Setup("planar_tripod", Criteria(limits={"q[123]": recovered}), {}, h_hybrid,
+                    f"planar strokes {recovered[0]:g}-{recovered[1]:g} mm, recovered from "
+                    "Table 2", planar_only=True)]
     return [Table2Setup("planar_tripod", Criteria(), {}, h_hybrid),
             Table2Setup("planar_tripod", Criteria(limits={"q[123]": PLANAR_STROKES_001}), {},
-                        h_hybrid, "planar strokes 120-325 mm", planar_only=True),
+                        h_hybrid, "planar strokes 120-325 mm", planar_only=True), *extra,
             Table2Setup("stewart", STEWART_000, dict(STEWART_000_PARAMS),
                         mid_stroke_height("stewart", range(6), mid, STEWART_000,
                                           **STEWART_000_PARAMS))]
@@ -222,37 +229,75 @@ def slice_extents(res: ScanResult, along: str, across: str) -> tuple[np.ndarray,
     return ext, ax_j.values()
 
 
-def table2_000(workers: int | None = None) -> tuple[list[dict], dict[str, ScanResult]]:
-    """000 Table 2 rows and the scans behind them (masks kept for the plots)."""
+def _home_scan(mechanism: str, grid: Grid, criteria: Criteria, home: dict[str, float],
+               workers: int | None, params: dict) -> tuple[ScanResult, HomeComponent]:
+    """A scan and its home component: the poses reachable from ``home`` (internal units)
+    without crossing a singularity (:mod:`..workspace.components`)."""
+    res = scan(mechanism, grid, criteria, workers=workers, **params)
+    return res, home_component(res, signs_near_reachable(res), home)
+
+
+def _clipped(comp: ScanResult, name: str) -> bool:
+    """Does the component reach the end of the grid axis ``name`` (its range then only a
+    lower bound)?"""
+    ax = next(a for a in comp.grid.axes if a.name == name)
+    lo, hi = comp.ranges[name]
+    return bool(lo <= ax.lo + 1e-12 or hi >= ax.hi - 1e-12)
+
+
+def table2_000(workers: int | None = None, recovered: tuple[float, float] | None = None
+               ) -> tuple[list[dict], dict[str, ScanResult]]:
+    """000 Table 2 rows and the scans behind them (masks kept for the plots).  Each range
+    is that of the home component (x = y = gamma = 0, resp. alpha = beta = 0 at the
+    mid-stroke height): the poses reachable from home without crossing a singularity; the
+    rows also give the extent of every pose within the joint ranges (``limits_only``)."""
     rows, scans = [], {}
-    for s in table2_setups():
+    for s in table2_setups(recovered):
         module = load_module(s.mechanism)
-        xyg = scan(s.mechanism, xyg_grid(module.POSE, s.height), s.criteria, workers=workers,
-                   **s.params)
+        xyg_all, xyg_home = _home_scan(s.mechanism, xyg_grid(module.POSE, s.height),
+                                       s.criteria, {"x": 0.0, "y": 0.0, "gamma": 0.0},
+                                       workers, s.params)
+        xyg = xyg_home.result
+        found = {"xyg": (xyg_all, xyg_home)}
         ext_x, gam = slice_extents(xyg, "x", "gamma")
         ext_y, _ = slice_extents(xyg, "y", "gamma")
         best = int(np.nanargmax(ext_x)) if np.any(np.isfinite(ext_x)) else None
         steps = {a.name: a.step for a in xyg.grid.axes}
         got = {
-            "x": (float(np.nanmax(ext_x)), steps["x"]),
-            "y": (float(np.nanmax(ext_y)), steps["y"]),
-            "gamma": (math.degrees(xyg.extent("gamma")), math.degrees(steps["gamma"])),
+            "x": (float(np.nanmax(ext_x)), steps["x"], "xyg"),
+            "y": (float(np.nanmax(ext_y)), steps["y"], "xyg"),
+            "gamma": (math.degrees(xyg.extent("gamma")), math.degrees(steps["gamma"]), "xyg"),
         }
         if not s.planar_only:
-            abz = scan(s.mechanism, abz_grid(module.POSE, s.height), s.criteria,
-                       workers=workers, **s.params)
+            abz_all, abz_home = _home_scan(s.mechanism, abz_grid(module.POSE, s.height),
+                                           s.criteria, {"alpha": 0.0, "beta": 0.0,
+                                                        "z": s.height}, workers, s.params)
+            abz = abz_home.result
+            found["abz"] = (abz_all, abz_home)
             scans[f"{s.mechanism}/xyg"], scans[f"{s.mechanism}/abz"] = xyg, abz
             steps.update({a.name: a.step for a in abz.grid.axes})
             got.update({
-                "z": (abz.extent("z"), steps["z"]),
-                "alpha": (math.degrees(abz.extent("alpha")), math.degrees(steps["alpha"])),
-                "beta": (math.degrees(abz.extent("beta")), math.degrees(steps["beta"])),
+                "z": (abz.extent("z"), steps["z"], "abz"),
+                "alpha": (math.degrees(abz.extent("alpha")), math.degrees(steps["alpha"]),
+                          "abz"),
+                "beta": (math.degrees(abz.extent("beta")), math.degrees(steps["beta"]),
+                         "abz"),
             })
-        for name, (value, step) in got.items():
+        for name, (value, step, which) in got.items():
+            res_all, home = found[which]
+            unit = 1.0 if name in "xyz" else math.degrees(1.0)
+            if name in "xy":
+                e_all, _ = slice_extents(res_all, name, "gamma")
+                limits_only = float(np.nanmax(e_all))
+            else:
+                limits_only = res_all.extent(name) * unit
             rows.append({"ref": "000 Table 2", "mechanism": s.mechanism,
                          "variant": s.variant, "coordinate": name,
                          "unit": "mm" if name in "xyz" else "deg",
                          "paper": TABLE2_000[s.mechanism][name], "ours": round(value, 3),
+                         "limits_only": round(limits_only, 3),
+                         "clipped_by_grid": _clipped(home.result, name),
+                         "bounding_loci": sorted(k for k, n in home.bounding.items() if n),
                          "grid_step": round(step, 6),
                          "height_mm": round(s.height, 3),
                          "gamma_at_max_x_deg": (round(math.degrees(gam[best]), 3)
@@ -337,18 +382,25 @@ SING_SLICES_001 = {  # 2-D slices for the plots
 
 def singularities_001(workers: int | None = None) -> tuple[list[dict], dict]:
     """For ``tripod_planar``: per grid of ``SING_GRIDS_001``, the reachable samples and, per
-    singularity polynomial, the reachable neighbour pairs it separates (``singular_loci``);
-    and the 2-D slices (scan, signs) for the plots."""
+    singularity polynomial, the reachable neighbour pairs it separates (``singular_loci``),
+    the home component (the homing pose's, :mod:`..workspace.components`) and the loci it
+    reaches; and the 2-D slices (scan, signs) for the plots."""
     from ..workspace.singular_loci import crossings, polynomial_signs, signs_on_reachable
 
     module = load_module("tripod_planar")
+    home_pose = dict(zip(module.POSE, (*HOMING, 0.0, 0.0, 0.0)))
     rows = []
     for name, (axes, fixed) in SING_GRIDS_001.items():
         res = scan("tripod_planar", user_grid(module.POSE, axes, fixed), workers=workers)
         signs = polynomial_signs(res)
+        home = home_component(res, signs, {a.name: home_pose[a.name] for a in res.grid.axes})
         rows.append({"grid": name, "description": res.grid.describe(), "samples": res.samples,
                      "reachable": res.count, "crossing_pairs": crossings(res, signs),
-                     "signs_on_reachable": signs_on_reachable(res, signs)})
+                     "signs_on_reachable": signs_on_reachable(res, signs),
+                     "home_component": {"samples": home.count,
+                                        "reachable_elsewhere": home.reachable_elsewhere,
+                                        "samples_next_to_locus": home.bounding,
+                                        "vanishing_at_home": list(home.vanishing_at_home)}})
     slices = {}
     for name, (axes, fixed) in SING_SLICES_001.items():
         res = scan("tripod_planar", user_grid(module.POSE, axes, fixed), workers=workers)

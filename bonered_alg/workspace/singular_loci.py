@@ -20,21 +20,32 @@ from .scan import ScanResult
 CHUNK = 1 << 15
 
 
-def polynomial_signs(res: ScanResult, mode: int = 0, params: Mapping | None = None
-                     ) -> dict[str, np.ndarray]:
+def polynomial_signs(res: ScanResult, mode: int = 0, params: Mapping | None = None,
+                     where: np.ndarray | None = None) -> dict[str, np.ndarray]:
     """Sign (-1, 0, 1; 0 also where undefined) of each singularity polynomial on every
-    grid sample (kinematics only, limits off), shaped like the grid."""
+    grid sample (kinematics only, limits off), shaped like the grid; with ``where`` (a
+    boolean array of the grid's shape) only there, 0 elsewhere: :func:`crossings` and
+    :func:`signs_on_reachable` read the reachable samples only, :mod:`.components` also
+    their neighbours."""
     module = load_module(res.mechanism)
     params = dict(params if params is not None else res.params)
+    if where is not None and where.shape != res.grid.shape:
+        raise ValueError(f"{res.mechanism}: where has shape {where.shape}, the grid "
+                         f"{res.grid.shape}")
+    flat = None if where is None else where.reshape(-1)
     out = {name: np.zeros(res.grid.size, dtype=np.int8) for name in module.SINGULARITY_MEANING}
     for a, b in res.grid.chunks(CHUNK):
         poses = res.grid.poses(a, b)
+        pick = slice(None) if flat is None else np.nonzero(flat[a:b])[0]
+        if flat is not None and pick.size == 0:
+            continue
+        poses = poses[pick]
         q = module.ik(poses, mode, False, **params)
         values = module.singularities(poses, q, **params)
         for name, v in values.items():
-            s = np.sign(v)
-            s[~np.isfinite(v)] = 0
-            out[name][a:b] = s
+            s = np.zeros(v.shape, dtype=np.int8)  # NaN (undefined): 0
+            s[v > 0], s[v < 0] = 1, -1
+            out[name][a:b][pick] = s
     return {k: v.reshape(res.grid.shape) for k, v in out.items()}
 
 
