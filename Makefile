@@ -25,8 +25,9 @@ derive-force: install
 	$(PY) -m bonered_alg.cli derive --force
 	$(PY) -m bonered_alg.cli comparison --force
 
+# one worker per core; each test module (or group of them, tests/conftest.py) on one worker
 test: install
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q -n auto --dist loadgroup
 
 bench: install
 	$(PY) bench/run.py --out bench/results.json

@@ -1,6 +1,7 @@
 import importlib
 import sys
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -15,13 +16,9 @@ def record_of(target):
     """The in-memory derivation record of a registered mechanism (or a declaration module),
     derived once per test session (through the elimination cache) and shared by every test
     that needs it."""
-    global _DERIVE
     key = target if isinstance(target, str) else target.__name__
     if key not in _RECORDS:
-        if _DERIVE is None:  # the runner's own, even where a test has patched it
-            from bonered_alg.pipeline.runner import derive
-
-            _DERIVE = derive
+        bind_derive()  # the runner's own, even where a test has patched it
         _RECORDS[key] = _DERIVE(target)
     return _RECORDS[key]
 
@@ -50,6 +47,24 @@ def symbolic_of(name: str):
     return _SYMBOLIC[name]
 
 
+def verification_of(name: str) -> list[SimpleNamespace]:
+    """The rows of the committed ``derivations/<name>.verification.json`` (ref, quantity,
+    verdict, max_error, detail)."""
+    import json
+
+    rows = json.loads((ROOT / "derivations" / f"{name}.verification.json").read_text())
+    return [SimpleNamespace(**row) for row in rows]
+
+
+def bind_derive() -> None:
+    """Keep the runner's own ``derive`` for :func:`record_of` before a test patches it."""
+    global _DERIVE
+    if _DERIVE is None:
+        from bonered_alg.pipeline.runner import derive
+
+        _DERIVE = derive
+
+
 def verdicts_of(name: str) -> dict[str, str]:
     """Verdict per printed reference from the committed ``derivations/<name>.verification.json``
     (CI re-derives it with ``derive --force`` and fails on any difference)."""
@@ -66,13 +81,28 @@ def gen():
 
 
 @pytest.fixture(scope="session")
-def record():
-    """The derivation record of pro_hep_lct (derivation, generated module, studies,
-    verdicts)."""
-    return record_of("pro_hep_lct")
+def verification():
+    """The verdicts of pro_hep_lct against paper 004, from the committed record (CI
+    re-derives it and fails on any difference)."""
+    return verification_of("pro_hep_lct")
 
 
 @pytest.fixture(scope="session")
-def derivation(record):
-    """The symbolic derivation of pro_hep_lct."""
-    return record.derivation
+def derivation():
+    """The symbolic derivation of pro_hep_lct (:func:`symbolic_of`)."""
+    return symbolic_of("pro_hep_lct")
+
+
+# pytest-xdist (make test: --dist loadgroup): every test module runs on one worker, so its
+# module and session fixtures derive once there; modules sharing an expensive derivation
+# run together
+SHARED_GROUPS = {"test_readme": "worked_example", "test_worked_example": "worked_example",
+                 **{m: "pro_hep_lct" for m in ("test_engines_agree", "test_generated_pro_hep_lct",
+                                               "test_paper_pro_hep_lct",
+                                               "test_pro_hep_lct_platform")}}
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        module = item.module.__name__.rsplit(".", 1)[-1]
+        item.add_marker(pytest.mark.xdist_group(SHARED_GROUPS.get(module, module)))

@@ -213,8 +213,19 @@ def test_fk_recovers_every_ik_mode(gen):
     q_all = gen.ik_all(poses, **GEOMETRY)  # (60, 8, 4)
     sols = gen.fk(q_all, **GEOMETRY)  # (60, 8, FK_MODES, 4)
     assert sols.shape == (60, 8, gen.FK_MODES, 4)
-    err = np.nanmin(np.max(np.abs(sols - poses[:, None, None, :]), axis=-1), axis=-1)
-    assert np.max(err) < 1e-9
+    dist = np.max(np.abs(sols - poses[:, None, None, :]), axis=-1)  # (60, 8, FK_MODES)
+    err = np.nanmin(dist, axis=-1)
+    # the separation from the nearest other assembly mode: where two modes nearly merge (a
+    # forward singularity) the pose is determined only to eps / separation, and the status
+    # OK promises the closure to VERIFY_RTOL (1 + |x|) (runtime/fk.py::verify), not 1e-9 mm
+    best = np.nanargmin(dist, axis=-1)
+    match = np.take_along_axis(sols, best[..., None, None], axis=-2)
+    sep = np.max(np.abs(sols - match), axis=-1)
+    np.put_along_axis(sep, best[..., None], np.inf, axis=-1)
+    apart = np.nanmin(sep, axis=-1) > 1.0
+    assert apart.mean() > 0.9
+    assert np.max(err[apart]) < 1e-9
+    assert np.all(err <= 1e-9 * (1 + np.max(np.abs(poses), axis=-1))[:, None])
 
 
 def test_fk_against_independent_circle_intersection(gen):

@@ -16,8 +16,8 @@ from bonered_alg.verification import constant_ratio
 from tests.conftest import ROOT
 
 
-def by_ref(record, ref):
-    return [v for v in record.verification if v.ref == ref]
+def by_ref(verification, ref):
+    return [v for v in verification if v.ref == ref]
 
 
 def test_eq16_generator_1_confirmed(derivation):
@@ -27,13 +27,13 @@ def test_eq16_generator_1_confirmed(derivation):
     assert constant_ratio(paper.PRINTED["eq16"]["D1"], gens[0]) == 1
 
 
-def test_eq16_generator_2_is_the_d_sign_erratum(derivation, record):
+def test_eq16_generator_2_is_the_d_sign_erratum(derivation, verification):
     """004 eq. (16), second generator: printed = derived with d -> -d (Pd not the midpoint)."""
     (g,) = derivation.leg("D2").result.generators
     printed = paper.PRINTED["eq16"]["D2"]
     assert constant_ratio(printed, g) is None
     assert constant_ratio(printed, g.subs(m.d, -m.d)) == 1
-    (v,) = by_ref(record, "004 eq. (16), generator 2")
+    (v,) = by_ref(verification, "004 eq. (16), generator 2")
     assert v.verdict == "erratum" and "d -> -d" in v.detail
 
 
@@ -48,18 +48,18 @@ def test_geometric_meaning_of_generator_2(derivation):
     assert sp.simplify(g.subs(on) * sp.cos(th / 2) ** 2 / 4 - circle) == 0
 
 
-def test_eq14_pu_drops_dz(derivation, record):
+def test_eq14_pu_drops_dz(derivation, verification):
     """004 eq. (14): the printed Pu has y3 = 0; the product of Table 1 has y3 = -Dz/2."""
     pu = derivation.leg("U").product
     assert sp.expand(pu[7] + m.Dz / 2) == 0
     assert all(sp.expand(sp.sympify(p) - c) == 0 for p, c in zip(paper.PRINTED["eq14"][:7], pu[:7]))
-    (v,) = by_ref(record, "004 eq. (14)")
+    (v,) = by_ref(verification, "004 eq. (14)")
     assert v.verdict == "erratum"
 
 
-def test_eq15_components(derivation, record):
+def test_eq15_components(derivation, verification):
     """004 eq. (15): x0, y1, y2 of chain 1 confirmed (scale -4); x3 has the t1, t2 signs wrong."""
-    got = {v.ref: v.verdict for v in record.verification if v.ref.startswith("004 eq. (15)")}
+    got = {v.ref: v.verdict for v in verification if v.ref.startswith("004 eq. (15)")}
     assert got == {
         "004 eq. (15), chain 1, x0": "confirmed-symbolic",
         "004 eq. (15), chain 1, x3": "erratum",
@@ -76,8 +76,8 @@ def test_eq15_components(derivation, record):
     assert sp.expand(prod[3] - (m.t1 + m.t2 + m.t3 - m.t1 * m.t2 * m.t3)) == 0
 
 
-def test_eq37_upper_input_singularity(derivation, record):
-    (v,) = by_ref(record, "004 eq. (37)")
+def test_eq37_upper_input_singularity(derivation, verification):
+    (v,) = by_ref(verification, "004 eq. (37)")
     assert v.verdict == "confirmed-symbolic"
 
 

@@ -90,8 +90,8 @@ def test_table5_rows(gen):
     assert rows["B 10 deg"]["model"][1] == pytest.approx(-0.0102, abs=1e-4)
 
 
-def test_table5_verdicts(record):
-    got = {v.ref: v.verdict for v in record.verification if "Table 5" in v.ref}
+def test_table5_verdicts(verification):
+    got = {v.ref: v.verdict for v in verification if "Table 5" in v.ref}
     assert got["004 Table 5, B 5 deg"] == "erratum"
     assert got["004 Table 5, B 10 deg"] == "erratum"
     assert sum(1 for v in got.values() if v == "confirmed-numeric") == 11
@@ -199,8 +199,10 @@ def test_manipulation_eq8_to_12_against_matrices():
                                atol=1e-12)
 
 
-def test_rcm_deviation_zero_at_control_points(record):
-    dev = record.studies["rcm_paths"].data["rcm_deviation"]
+def test_rcm_deviation_zero_at_control_points(gen):
+    from bonered_alg.studies.rcm_paths_004 import rcm_deviation
+
+    dev = rcm_deviation(gen)
     for d in dev.values():
         norm = np.linalg.norm(d["deviation"], axis=-1)
         assert d["at_control_points"] < 1e-9
@@ -208,7 +210,7 @@ def test_rcm_deviation_zero_at_control_points(record):
         assert norm[::50].max() < 1e-9
 
 
-def test_printed_argument_lists_of_sg3_to_sg6(derivation, record):
+def test_printed_argument_lists_of_sg3_to_sg6(derivation, verification):
     """004 eq. (24)-(27) print only argument lists.  The output singularity of the lower
     mechanism in (t1, w1) (det_Jo_Pd with the pose eliminated) depends on every link: no
     factor matches sg3's (t1, w1, l1, l3), nor sg4-sg6's lists that omit l4."""
@@ -217,7 +219,7 @@ def test_printed_argument_lists_of_sg3_to_sg6(derivation, record):
     for _f, syms in facs:
         names = {str(s) for s in syms}
         assert {"l2", "l4", "t1", "w1"} <= names
-    got = {v.ref: v.verdict for v in record.verification}
+    got = {v.ref: v.verdict for v in verification}
     assert got["004 eq. (24)"] == "confirmed-symbolic"
     for ref in ("004 eq. (25)", "004 eq. (26)", "004 eq. (27)"):
         assert got[ref] == "erratum"

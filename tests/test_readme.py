@@ -3,7 +3,7 @@
 import re
 
 import numpy as np
-from conftest import record_of
+from conftest import bind_derive, record_of
 
 from bonered_alg.pipeline import runner
 from tests.conftest import ROOT
@@ -15,7 +15,7 @@ def test_readme_examples_run(monkeypatch):
     assert len(blocks) >= 4
     monkeypatch.chdir(ROOT)
     # the README derives the worked example: share the session's derivation of it
-    record_of("pro_hep_lct")  # binds the runner's own derive before it is patched
+    bind_derive()  # the runner's own derive, for record_of, before it is patched
     monkeypatch.setattr(runner, "derive", record_of)
     namespace: dict = {}
     for block in blocks:

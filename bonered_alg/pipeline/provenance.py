@@ -54,8 +54,15 @@ def imports(name: str, files: dict[str, Path]) -> set[str]:
     """Package modules that module ``name`` imports (anywhere in its body), and the
     modules named by string constants in it (the declarations' ``checks``/``studies``)."""
     path = files[name]
-    tree = ast.parse(path.read_text(), filename=str(path))
-    is_package = path.name == "__init__.py"
+    return {m for m in _named_in(name, path.name == "__init__.py", path.read_text())
+            if m in files}
+
+
+@lru_cache(maxsize=4096)
+def _named_in(name: str, is_package: bool, text: str) -> frozenset[str]:
+    """Every module name imported or named in the source ``text`` of module ``name`` (parsed
+    once per text: hashing the same tree again reads the files but parses nothing)."""
+    tree = ast.parse(text, filename=name)
     out: set[str] = set()
     for node in ast.walk(tree):
         if isinstance(node, ast.Import):
@@ -67,7 +74,7 @@ def imports(name: str, files: dict[str, Path]) -> set[str]:
         elif isinstance(node, ast.Constant) and isinstance(node.value, str) \
                 and node.value.startswith(PACKAGE + "."):
             out.add(node.value)
-    return {m for m in out if m in files}
+    return frozenset(out)
 
 
 def closure(roots, files: dict[str, Path]) -> set[str]:
