@@ -10,23 +10,34 @@ from scipy.spatial.transform import Rotation
 
 from bonered_alg.registry import load
 
-RNG = np.random.default_rng(404)
+SEED = 404
+
+
+def _rng(name):
+    """A generator per mechanism and test, so the samples do not depend on the order the
+    tests run in (pytest-xdist)."""
+    return np.random.default_rng([SEED, sum(map(ord, name))])
 
 
 def _poses(name, n):
     if name == "pro_hep_lct":
         return None
+    rng = _rng(name)
     z = (230, 280) if name == "tripod_planar" else (190, 235)
-    return np.column_stack([RNG.uniform(-20, 20, n), RNG.uniform(-20, 20, n),
-                            RNG.uniform(*z, n), RNG.uniform(-0.2, 0.2, (n, 3))])
+    return np.column_stack([rng.uniform(-20, 20, n), rng.uniform(-20, 20, n),
+                            rng.uniform(*z, n), rng.uniform(-0.2, 0.2, (n, 3))])
 
 
 def _pro_hep_lct_poses(gen, n):
-    # Pu and Pd from joint values, so every pose is reachable (mode 0 of the IK)
-    q = np.column_stack([RNG.uniform(-0.3, 0.0, n), RNG.uniform(0.0, 0.2, n),
-                         RNG.uniform(40, 120, n), RNG.uniform(150, 200, n)])
-    poses = gen.fk(q)[:, 0]
-    return poses[np.isfinite(poses).all(axis=-1)]
+    """``n`` poses from joint values where the FK's mode 0 is real, so every pose is
+    reachable (mode 0 of the IK)."""
+    rng, out = _rng("pro_hep_lct"), []
+    while sum(len(p) for p in out) < n:
+        q = np.column_stack([rng.uniform(-0.3, 0.0, n), rng.uniform(0.0, 0.2, n),
+                             rng.uniform(40, 120, n), rng.uniform(150, 200, n)])
+        poses = gen.fk(q)[:, 0]
+        out.append(poses[np.isfinite(poses).all(axis=-1)])
+    return np.concatenate(out)[:n]
 
 
 @pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar", "stewart", "pro_hep_lct"])
