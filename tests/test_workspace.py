@@ -398,3 +398,29 @@ def test_home_component_stops_at_the_planar_input_singularity():
     assert np.all((q[:3] >= 120) & (q[:3] <= 325))  # beyond the locus, within the strokes
     assert m.ik_status(np.array([0.0, 0.0, setup.height, 0.0, 0.0, -math.pi / 3]),
                        limits=False) == m.INPUT_SINGULAR
+
+
+def test_home_component_on_a_synthetic_grid():
+    """A sign change at x = 3 cuts a fully reachable 5 x 5 grid: the component of home
+    (0, 0) is x <= 2, the locus is within two steps of x = 1, 2; errors for a home off the
+    grid or unreachable."""
+    from bonered_alg.workspace.components import HomeNotReachable, home_component
+    from bonered_alg.workspace.membership import Criteria
+    from bonered_alg.workspace.scan import ScanResult
+
+    grid = Grid(POSE, (Axis("x", 0.0, 4.0, 5), Axis("y", 0.0, 4.0, 5)),
+                {"z": 200.0, "alpha": 0.0, "beta": 0.0, "gamma": 0.0})
+    mask = np.ones((5, 5), dtype=bool)
+    res = ScanResult("synthetic", grid, Criteria(), {}, count=25, mask=mask)
+    s = np.ones((5, 5), dtype=np.int8)
+    s[3:, :] = -1
+    home = home_component(res, {"f": s, "flat": np.ones((5, 5), dtype=np.int8)},
+                          {"x": 0.0, "y": 0.0})
+    assert home.count == 15 and home.reachable_elsewhere == 10
+    assert home.result.ranges == {"x": (0.0, 2.0), "y": (0.0, 4.0)}
+    assert home.bounding == {"f": 10, "flat": 0}
+    with pytest.raises(ValueError, match="outside the grid axis"):
+        home_component(res, {"f": s}, {"x": 9.0, "y": 0.0})
+    res.mask[0, 0] = False
+    with pytest.raises(HomeNotReachable, match="not reachable"):
+        home_component(res, {"f": s}, {"x": 0.0, "y": 0.0})

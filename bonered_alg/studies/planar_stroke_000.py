@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..workspace.components import home_component, signs_near_reachable
+from ..workspace.components import HomeNotReachable, home_component, signs_near_reachable
 from ..workspace.membership import Criteria, load_module
 from ..workspace.scan import scan
 from .bone_reduction import TABLE2_000, slice_extents, table2_setups, xyg_grid
@@ -85,7 +85,7 @@ class _Search:
         cand = replace(self.res, mask=mask, count=int(np.count_nonzero(mask)))
         try:
             comp = home_component(cand, self.signs, HOME).result
-        except ValueError:  # home itself outside these strokes
+        except HomeNotReachable:  # home itself outside these strokes
             return None
         ext_x, gam = slice_extents(comp, "x", "gamma")
         ext_y, _ = slice_extents(comp, "y", "gamma")

@@ -24,6 +24,10 @@ from .scan import ScanResult
 from .singular_loci import polynomial_signs
 
 
+class HomeNotReachable(ValueError):
+    """The home pose itself is outside the scanned workspace (not reachable on the grid)."""
+
+
 @dataclass(frozen=True)
 class HomeComponent:
     """A scan restricted to the home pose's component (``result``) and what was left out."""
@@ -106,7 +110,7 @@ def home_component(res: ScanResult, signs: Mapping[str, np.ndarray],
         raise ValueError(f"{res.mechanism}: the scan kept no mask (keep_mask=False)")
     at = nearest_index(res, home)
     if not res.mask[at]:
-        raise ValueError(f"{res.mechanism}: the home pose {dict(home)} is not reachable "
+        raise HomeNotReachable(f"{res.mechanism}: the home pose {dict(home)} is not reachable "
                          "on this grid")
     allowed = res.mask.copy()
     used, skipped = [], []
