@@ -41,6 +41,7 @@ from ..mechanisms.planar_tripod import (
     z2,
 )
 from ..verification import Verdict, constant_ratio, noise_bound, rounded
+from .planar_stage import output_determinant_with_ik
 
 R = {"real": True}
 
@@ -266,7 +267,6 @@ def _verify_planar_singularity(deriv, ik, geo) -> list:
     """000 eq. (39)-(41): det B, its printed expansion and its value with eq. (17)."""
     import numpy as np
 
-    cs = deriv.constants
     # eq. (39): B = [J_B; J_D] of eq. (25), (33) with generic entries
     b_ = {(i, j): sp.Symbol(f"b{i}{j}") for i in range(1, 4) for j in (1, 2, 4, 5, 6)
           if not (i == 1 and j in (4, 5))}
@@ -328,11 +328,7 @@ def _verify_planar_singularity(deriv, ik, geo) -> list:
     printed41 = (1 - sp.cos(th)) / sp.sin(th)
     ok_correct = sp.simplify(sp.expand_trig(got - correct)) == 0
     ok41 = sp.simplify(sp.expand_trig(got - printed41)) == 0
-    sing = {s.name: s for s in deriv.singularities}
-    det_o = sing["det_Jo_MP1"].expression.subs(cs)
-    steps = {st.joint: (-st.C / st.B).subs(cs) for st in deriv.steps if st.joint in (q1, q2, q3)}
-    fwd = sp.factor(sp.cancel(det_o.subs(steps)), extension=_SQ3)
-    fwd_roots = sorted({str(sp.nsimplify(2 * sp.atan(r))) for r in sp.solve(sp.numer(fwd), g)})
+    fwd, fwd_roots = output_determinant_with_ik(deriv, "det_Jo_MP1", (q1, q2, q3), g)
     out.append(Verdict(
         "000 eq. (41)", "J_B16 + J_B26 + J_B36 with eq. (17) inserted",
         "confirmed-symbolic" if ok41 else "erratum", None,

@@ -41,6 +41,7 @@ from ..mechanisms.tripod_planar import (
     y1,
 )
 from ..verification import Verdict, in_ideal
+from .planar_stage import output_determinant_with_ik
 
 R = {"real": True}
 
@@ -509,10 +510,7 @@ def _verify_singularities(deriv) -> list:
     ok_correct = sp.simplify(got - correct) == 0
     ok52 = sp.simplify(got - printed52) == 0
     # independently: the derived output Jacobian of the planar closure with the IK inserted
-    det_o = sing["det_Jo_C"].expression.subs(cs)
-    steps = {st.joint: (-st.C / st.B).subs(cs) for st in deriv.steps if st.joint in (q4, q5, q6)}
-    fwd = sp.factor(sp.cancel(det_o.subs(steps)), extension=_SQ3)
-    fwd_roots = sorted({str(sp.nsimplify(2 * sp.atan(r))) for r in sp.solve(sp.numer(fwd), g)})
+    fwd, fwd_roots = output_determinant_with_ik(deriv, "det_Jo_C", (q4, q5, q6), g)
     out.append(Verdict(
         "001 eq. (52)", "det J_D with the IK inserted",
         "confirmed-symbolic" if ok52 else "erratum", None,
