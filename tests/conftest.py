@@ -93,16 +93,48 @@ def derivation():
     return symbolic_of("pro_hep_lct")
 
 
-# pytest-xdist (make test: --dist loadgroup): every test module runs on one worker, so its
-# module and session fixtures derive once there; modules sharing an expensive derivation
-# run together
+# pytest-xdist (make test: -n auto --dist loadgroup): every test module runs on one worker, so
+# its module and session fixtures derive once there; modules sharing an expensive derivation
+# run together, as one group
 SHARED_GROUPS = {"test_readme": "worked_example", "test_worked_example": "worked_example",
                  **{m: "pro_hep_lct" for m in ("test_engines_agree", "test_generated_pro_hep_lct",
                                                "test_paper_pro_hep_lct",
                                                "test_pro_hep_lct_platform")}}
+# the groups that take longest (pytest --durations on a fresh clone), handed out first so that
+# the short ones fill in behind them on both workers (longest-processing-time-first)
+LONGEST_FIRST = ("pro_hep_lct", "test_tripod_planar", "test_planar_tripod", "worked_example",
+                 "test_workspace", "test_stewart", "test_fk_trust", "test_tripod_forward")
+
+
+def group_of(nodeid: str) -> str:
+    """The scheduling group of a test: its module's, or the shared one of SHARED_GROUPS."""
+    module = nodeid.split("::", 1)[0].rsplit("/", 1)[-1].removesuffix(".py")
+    return SHARED_GROUPS.get(module, module)
+
+
+def _rank(group: str) -> int:
+    return LONGEST_FIRST.index(group) if group in LONGEST_FIRST else len(LONGEST_FIRST)
 
 
 def pytest_collection_modifyitems(config, items):
-    for item in items:
-        module = item.module.__name__.rsplit(".", 1)[-1]
-        item.add_marker(pytest.mark.xdist_group(SHARED_GROUPS.get(module, module)))
+    """Each group's tests together, the longest groups first (a stable sort: the order within
+    a group is the collection order)."""
+    items.sort(key=lambda item: _rank(group_of(item.nodeid)))
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadgroup`` scheduled by :func:`group_of`.  xdist's own loadgroup reads the
+    ``xdist_group`` marker into a node-id suffix, which pytest 9 ignores (``Item.nodeid`` is
+    no longer ``_nodeid``): the marker silently stopped grouping and a shared derivation ran
+    on both workers."""
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadScopeScheduling
+
+    class SharedDerivationScheduling(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return group_of(nodeid)
+
+    config.option.loadscopereorder = False  # keep LONGEST_FIRST, not the number of tests
+    return SharedDerivationScheduling(config, log)

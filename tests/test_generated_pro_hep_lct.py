@@ -7,6 +7,7 @@ import sys
 import numpy as np
 import pytest
 import sympy as sp
+from conftest import ROOT
 from independent_pro_hep_lct import (
     GEOMETRY,
     closure_residual_for_active,
@@ -15,8 +16,6 @@ from independent_pro_hep_lct import (
     solve_leg,
     upper,
 )
-
-from tests.conftest import ROOT
 
 RNG = np.random.default_rng(7)
 STARTS = [(a, p) for a in np.linspace(-3, 3, 5) for p in (-2.0, -0.7, 0.7, 2.0)]
@@ -90,29 +89,36 @@ def test_numeric_mode_set_matches(gen):
         assert np.allclose(numeric, generated, atol=1e-8)
 
 
-def independent_ik(pose, near):
-    """Active joints near ``near`` (t1, w1, q4, q5) from the independent model."""
-    def active(forward, target, a0):
-        r = least_squares_two(forward, target, a0)
-        return np.tan(r / 2)
+def independent_ik(pose, near, seeds=None):
+    """Active joints near ``near`` (t1, w1, q4, q5) from the independent model, and the
+    (active, passive) angle pair of each lower leg.  With ``seeds`` (those pairs at a pose
+    close by) each leg is solved from its seed alone instead of searched over 13 starts."""
+    def active(forward, target, a0, seed):
+        a, p = least_squares_two(forward, target, a0, seed)
+        return np.tan(a / 2), (a, p)
 
-    t1 = active(lower_leg1, pose[2:], 2 * np.arctan(near[0]))
-    w1 = active(lower_leg2, pose[2:], 2 * np.arctan(near[1]))
+    s1, s2 = seeds if seeds is not None else (None, None)
+    t1, s1 = active(lower_leg1, pose[2:], 2 * np.arctan(near[0]), s1)
+    w1, s2 = active(lower_leg2, pose[2:], 2 * np.arctan(near[1]), s2)
     q5 = pose[1]
     s = np.sign(near[3] - near[2]) if near[3] != near[2] else 1.0
     q4 = q5 - s * np.sqrt(GEOMETRY["ld4"] ** 2 - (pose[0] - GEOMETRY["lq5"]) ** 2)
-    return np.array([t1, w1, q4, q5])
+    return np.array([t1, w1, q4, q5]), (s1, s2)
 
 
-def least_squares_two(forward, target, a0):
+def least_squares_two(forward, target, a0, seed=None):
+    """The (active, passive) pair closing ``forward = target`` whose active angle is nearest
+    ``a0``, over 13 passive starts; from ``seed`` alone if one is given."""
     from scipy.optimize import least_squares
 
     best = None
-    for p0 in np.linspace(-3, 3, 13):
-        r = least_squares(lambda v: forward(v[0], v[1]) - target, [a0, p0], xtol=1e-15,
+    starts = [seed] if seed is not None else [[a0, p0] for p0 in np.linspace(-3, 3, 13)]
+    for start in starts:
+        r = least_squares(lambda v: forward(v[0], v[1]) - target, start, xtol=1e-15,
                           ftol=1e-15, gtol=1e-15)
-        if np.max(np.abs(r.fun)) < 1e-10 and (best is None or abs(r.x[0] - a0) < abs(best - a0)):
-            best = r.x[0]
+        if np.max(np.abs(r.fun)) < 1e-10 and (best is None or abs(r.x[0] - a0) < abs(best[0] - a0)):
+            best = (r.x[0], r.x[1])
+    assert best is not None, "the independent model found no closure"
     return best
 
 
@@ -125,11 +131,14 @@ def test_jacobian_against_finite_differences(gen):
             q0 = gen.ik(pose, mode, **GEOMETRY)
             if not np.all(np.isfinite(J)):
                 continue
+            # the branch of each lower leg at the pose itself, then each step from it
+            _, seeds = independent_ik(pose, q0)
             fd = np.empty((4, 4))
             for k in range(4):
                 e = np.zeros(4)
                 e[k] = h
-                fd[:, k] = (independent_ik(pose + e, q0) - independent_ik(pose - e, q0)) / (2 * h)
+                fd[:, k] = (independent_ik(pose + e, q0, seeds)[0]
+                            - independent_ik(pose - e, q0, seeds)[0]) / (2 * h)
             assert np.allclose(J, fd, rtol=1e-5, atol=1e-7), (pose, mode, J, fd)
 
 

@@ -9,13 +9,13 @@ import subprocess
 import sys
 
 import pytest
+from conftest import ROOT
 
 from bonered_alg.pipeline import outputs
 from bonered_alg.pipeline.provenance import derivation_hash
 from bonered_alg.pipeline.runner import current_hash
 from bonered_alg.pipeline.stages import GENERATOR
 from bonered_alg.registry import MECHANISMS, REGISTRY
-from tests.conftest import ROOT
 
 
 @pytest.mark.parametrize("name", REGISTRY)

@@ -4,8 +4,7 @@ lacked ``bonered_alg.surgical`` and the README's Pro-Hep-LCT example failed)."""
 import sys
 
 import pytest
-
-from tests.conftest import ROOT
+from conftest import ROOT
 
 
 @pytest.mark.skipif(sys.version_info < (3, 11), reason="tomllib is Python 3.11+")

@@ -8,12 +8,12 @@ disagrees, the test pins the *derived* form and the exact printed discrepancy.
 import json
 
 import sympy as sp
+from conftest import ROOT
 
 from bonered_alg.mechanisms import pro_hep_lct as m
 from bonered_alg.papers import p004_pro_hep_lct as paper
 from bonered_alg.papers import study_algebra
 from bonered_alg.verification import constant_ratio
-from tests.conftest import ROOT
 
 
 def by_ref(verification, ref):

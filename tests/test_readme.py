@@ -3,10 +3,9 @@
 import re
 
 import numpy as np
-from conftest import bind_derive, record_of
+from conftest import ROOT, bind_derive, record_of
 
 from bonered_alg.pipeline import runner
-from tests.conftest import ROOT
 
 
 def test_readme_examples_run(monkeypatch):

@@ -4,9 +4,9 @@ import shutil
 import subprocess
 
 import pytest
+from conftest import ROOT
 
 from bonered_alg.registry import REGISTRY
-from tests.conftest import ROOT
 
 
 @pytest.mark.skipif(shutil.which("latexmk") is None, reason="no LaTeX toolchain")

@@ -5,11 +5,10 @@ checked here against plain planar geometry (numpy), not the code under test."""
 import example_planar_3rrr
 import numpy as np
 import pytest
-from conftest import record_of
+from conftest import ROOT, record_of
 from example_planar_3rrr import BASE, PLATFORM
 
 from bonered_alg.pipeline import outputs
-from tests.conftest import ROOT
 
 RNG = np.random.default_rng(3)
 GEO = {"L": 300.0, "b": 100.0, "l1": 160.0, "l2": 160.0}

@@ -213,8 +213,9 @@ def test_printed_table_inconsistencies_are_found():
 
 
 def test_comparison_outputs_are_current():
+    from conftest import ROOT
+
     from bonered_alg.studies.comparison_report import comparison_hash, recorded_hash
-    from tests.conftest import ROOT
 
     assert recorded_hash(ROOT) == comparison_hash()
 
@@ -315,7 +316,7 @@ def test_workspace_command_on_a_planar_mechanism_with_other_pose_names(tmp_path)
 def _comparison_record() -> dict:
     import json
 
-    from tests.conftest import ROOT
+    from conftest import ROOT
 
     return json.loads((ROOT / "derivations" / "bone_reduction_workspace.json").read_text())
 
