@@ -41,6 +41,7 @@ report: install
 	cd derivations && for f in *.tex; do \
 	  SOURCE_DATE_EPOCH=0 latexmk -pdf -interaction=nonstopmode -halt-on-error -quiet "$$f" || exit 1; \
 	done
+	$(PY) -m bonered_alg.report.layout_check derivations/*.log
 	cd derivations && latexmk -c -quiet >/dev/null
 
 # the pinned Python packages: the newest versions pyproject.toml allows, on purpose only

@@ -7,6 +7,7 @@ import pytest
 from conftest import ROOT
 
 from bonered_alg.registry import REGISTRY
+from bonered_alg.report.layout_check import layout_problems
 
 
 @pytest.mark.skipif(shutil.which("latexmk") is None, reason="no LaTeX toolchain")
@@ -22,3 +23,5 @@ def test_report_compiles(tmp_path, name):
     assert (tmp_path / f"{name}.pdf").stat().st_size > 10_000
     log = (tmp_path / f"{name}.log").read_text(errors="replace")
     assert "Undefined control sequence" not in log
+    # issue 14: nothing runs off the page by more than 10 pt, at most 40 pages
+    assert layout_problems(log, name) == []

@@ -89,7 +89,8 @@ def test_jacobian_passive_joints_and_twist(record):
 def test_it_gets_a_report_and_singularities(record):
     files = outputs.files(record)
     assert set(files) == {"generated/planar_3rrr.py", "derivations/planar_3rrr.tex",
-                          "derivations/planar_3rrr.verification.json"}
+                          "derivations/planar_3rrr.verification.json",
+                          "derivations/planar_3rrr.algebra.json"}
     names = {s.name for s in record.derivation.singularities}
     assert {"det_Ji_platform", "det_Jo_platform", "boundary_u1"} <= names
     assert "not generated" in record.generated.module.FK_NOTE or record.generated.module.FK_NOTE

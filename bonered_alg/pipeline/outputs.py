@@ -1,7 +1,8 @@
 """The files a derivation writes, rendered in memory first, then written atomically.
 
-``generated/<name>.py``, ``derivations/<name>.tex``, ``derivations/<name>.verification.json``
-and the studies' files beside the report.  :func:`write` writes nothing unless every file
+``generated/<name>.py``, ``derivations/<name>.tex``, ``derivations/<name>.verification.json``,
+``derivations/<name>.algebra.json`` (the long polynomials the report summarizes) and the
+studies' files beside the report.  :func:`write` writes nothing unless every file
 rendered, each through a temporary file and a rename, and skips files whose bytes are
 unchanged.
 """
@@ -24,6 +25,7 @@ def verification_json(verdicts) -> str:
 
 def files(record: Record) -> dict[str, str | bytes]:
     """Relative path -> content of every output of ``record``."""
+    from ..report.algebra_record import algebra_json
     from ..report.latex_report import render_report
 
     name = record.derivation.mechanism.name
@@ -31,6 +33,7 @@ def files(record: Record) -> dict[str, str | bytes]:
         f"generated/{name}.py": record.generated.source,
         f"derivations/{name}.tex": render_report(record),
         f"derivations/{name}.verification.json": verification_json(record.verification),
+        f"derivations/{name}.algebra.json": algebra_json(record.derivation),
     }
     for study in record.studies.values():
         for rel, content in study.files.items():

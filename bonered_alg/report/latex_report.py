@@ -12,9 +12,8 @@ import sympy as sp
 
 from ..chains.topology import loops, mobility_counts, topology
 from ..kinematics.rps_forward import DEGREE_BOUND, PAIRS
-from .latex_util import broken_math, latex, tex_escape, texttt
-
-LONG_FACTOR_TERMS = 200
+from .algebra_record import FULL_TERMS, degrees, is_long, terms
+from .latex_util import broken_math, latex, matrix_math, tex_escape, texttt
 
 PREAMBLE = r"""\documentclass[10pt,a4paper]{article}
 \usepackage[margin=2cm]{geometry}
@@ -142,13 +141,53 @@ def _section_elimination(d) -> list[str]:
             + "; kept (in this order): " + ", ".join(f"${latex(s)}$" for s in p.keep) + ".",
             f"Result: {len(r.result.generators)} generator(s); Hilbert (Krull) dimension "
             f"{r.result.dimension} in {len(p.keep)} variables."]
-        for k, g in enumerate(r.result.generators, 1):
-            out.append(broken_math(f"g_{{{k}}}", g))
+        out += _generator_table(d, r, r.result.generators)
         if r.leg.mount is not None:
             out.append("In the platform's coordinates and the inputs:")
-            for k, g in enumerate(r.generators, 1):
-                out.append(broken_math(f"g_{{{k}}}", g))
+            out += _generator_table(d, r, r.generators)
     return out
+
+
+def _summary(expr) -> str:
+    """Degree in each variable, as a monomial of the variables: x^2 q^1 -> $x^{2} q$."""
+    return "$" + r"\,".join(latex(v) + (f"^{{{k}}}" if k > 1 else "")
+                             for v, k in degrees(expr) if k) + "$"
+
+
+def _generator_table(d, r, generators) -> list[str]:
+    """One row per generator (degrees, terms, use), then the short ones in full; every one
+    is in full in ``<name>.algebra.json``."""
+    used = {sp.expand(s.generator): s for s in d.steps}
+    out = [r"\begin{longtable}{lp{0.55\textwidth}rl}\toprule",
+           r"generator & degree in each variable & terms & used for\\\midrule"]
+    for k, g in enumerate(generators, 1):
+        step = used.get(sp.expand(g))
+        use = f"IK of ${latex(step.joint)}$" if step is not None else ""
+        out.append(f"$g_{{{k}}}$ & {_summary(g)} & {terms(g)} & {use}\\\\")
+    out.append(r"\bottomrule\end{longtable}")
+    short = [(k, g) for k, g in enumerate(generators, 1) if not is_long(g)]
+    if short:
+        out.append(f"The generators of at most {FULL_TERMS} terms"
+                   + ("" if len(short) == len(generators) else
+                      f" (the others, in full, in \\texttt{{{_algebra_file(d)}}})") + ":")
+        for k, g in short:
+            out.append(broken_math(f"g_{{{k}}}", g))
+    else:
+        out.append(f"Each has more than {FULL_TERMS} terms; in full in "
+                   f"\\texttt{{{_algebra_file(d)}}}.")
+    return out
+
+
+def _algebra_file(d) -> str:
+    return tex_escape(f"{d.mechanism.name}.algebra.json")
+
+
+def _polynomial(lhs: str, expr, d) -> str:
+    """``lhs = expr`` in full, or its summary where it is long."""
+    if not is_long(expr):
+        return broken_math(lhs, expr)
+    return (f"${lhs}$: {terms(expr)} terms, degree in each variable {_summary(expr)} "
+            f"(in full in \\texttt{{{_algebra_file(d)}}}).\n")
 
 
 DISTANCE_LEG_MAX_TERMS = 120
@@ -188,15 +227,19 @@ def _distance_leg(r) -> list[str]:
 POSE_MAP_MAX_CHARS = 1500
 
 
-def _pose_map_entry(k, v) -> str:
-    """``$k = v$``, or a pointer to the generated kernel when ``v`` is too long to read."""
-    text = latex(v)
-    if len(text) <= POSE_MAP_MAX_CHARS:
-        return f"${latex(k)} = {text}$"
-    return (f"${latex(k)}$ (a rational function of the pose with "
-            f"{int(sp.count_ops(v))} operations before common-subexpression elimination; "
-            r"its construction is given in the mechanism's own section, its code in "
-            r"\texttt{\_study})")
+def _pose_map(d) -> list[str]:
+    """The Study coordinates of the platform as functions of the pose, one display each, or
+    a pointer to the generated kernel where one is too long to read."""
+    out = []
+    for k, v in d.pose_to_study.items():
+        if len(latex(v)) <= POSE_MAP_MAX_CHARS:
+            out.append(broken_math(latex(k), v))
+        else:
+            out.append(f"${latex(k)}$: a rational function of the pose with "
+                       f"{int(sp.count_ops(v))} operations before common-subexpression "
+                       "elimination; its construction is given in the mechanism's own "
+                       r"section, its code in \texttt{\_study}.")
+    return out
 
 
 def _section_ik(d) -> list[str]:
@@ -205,16 +248,16 @@ def _section_ik(d) -> list[str]:
            "unknown joint is that one (back-substitution). A quadratic "
            r"$A q^2 + B q + C = 0$ has the roots $q = (-B \pm \sqrt{B^2-4AC})/(2A)$; "
            r"the sign is the working mode of that step ($+$: mode bit 0). "
-           f"Number of working modes: {d.modes}. Pose coordinates: "
-           + ", ".join(_pose_map_entry(k, v) for k, v in d.pose_to_study.items())
-           + " (" + tex_escape(d.mechanism.pose.description) + ")."]
+           f"Number of working modes: {d.modes}. The platform's Study coordinates in the "
+           "pose coordinates (" + tex_escape(d.mechanism.pose.description) + "):"]
+    out += _pose_map(d)
     for s in d.steps:
         out.append(rf"\paragraph{{Joint ${latex(s.joint)}$}} from {tex_escape(s.source)}, "
                    f"degree {s.degree}:")
         if s.degree == 2:
-            out.append(broken_math("A", s.A))
-        out.append(broken_math("B", s.B))
-        out.append(broken_math("C", s.C))
+            out.append(_polynomial("A", s.A, d))
+        out.append(_polynomial("B", s.B, d))
+        out.append(_polynomial("C", s.C, d))
     return out
 
 
@@ -244,7 +287,7 @@ def _section_fk(d) -> list[str]:
                    + f". Hilbert dimension {f.dimension} over the parameter field; "
                    f"{f.solutions} solutions counted with multiplicity (standard monomials).")
         for k, g in enumerate(f.result.generators, 1):
-            out.append(broken_math(f"b_{{{k}}}", g, width=110))
+            out.append(broken_math(f"b_{{{k}}}", g))
         out.append("Back-substitution order: " + ", ".join(
             f"${latex(s.joint)}$ (degree {s.degree})" for s in f.steps) + ".")
         out += _alternate_plans(f)
@@ -302,7 +345,7 @@ def _rps_fk(f) -> list[str]:
         + " in a plane, so its spherical joint centre $B_k$ runs on a circle. The centres, "
         "from the product of the leg's factors before the spherical joint:"]
     for k, c in enumerate(r.centres, 1):
-        out.append(broken_math(f"B_{{{k}}}", sp.Matrix(c).T, width=110))
+        out.append(broken_math(f"B_{{{k}}}", sp.Matrix(c).T))
     out.append("The platform is rigid: $|B_i - B_j|^2 = |P_i - P_j|^2$ with the platform "
                "points $P_k$ (the trailing offsets inverted), "
                + ", ".join(f"$P_{{{k}}} = {latex(sp.Matrix(p).T)}$"
@@ -310,7 +353,7 @@ def _rps_fk(f) -> list[str]:
                + ". Cleared of the denominators $1 + u_k^2$ (no real zeros) and of content, "
                "each condition is biquadratic:")
     for (i, j), e in zip(PAIRS, r.equations):
-        out.append(broken_math(f"e_{{{i + 1}{j + 1}}}", e, width=110))
+        out.append(broken_math(f"e_{{{i + 1}{j + 1}}}", e))
     at = ", ".join(f"${latex(k)} = {latex(v)}$" for k, v in f.count_at.items())
     out.append(
         r"The lex basis of $\langle e_{12}, e_{23}, e_{31}\rangle$ over $\mathbb{Q}$(joints, "
@@ -351,34 +394,72 @@ def _section_velocity(d) -> list[str]:
         out.append(rf"\subsection{{{tex_escape(v.closure)}}}")
         out.append("Rows: the IK generators of " + ", ".join(f"${latex(q)}$" for q in v.joints)
                    + "; $J_i$ columns " + ", ".join(f"${latex(q)}$" for q in v.joints)
-                   + ", $J_o$ columns " + ", ".join(f"${latex(y)}$" for y in v.pose)
-                   + ". Non-zero entries:")
-        for name, mat, cols in (("J_i", v.ji, v.joints), ("J_o", v.jo, v.pose)):
-            for i in range(mat.rows):
-                for j in range(mat.cols):
-                    if mat[i, j] != 0:
-                        out.append(broken_math(f"{name}[{i + 1},{latex(cols[j])}]",
-                                               sp.expand(mat[i, j])))
+                   + ", $J_o$ columns " + ", ".join(f"${latex(y)}$" for y in v.pose) + ".")
+        for name, mat in (("J_i", v.ji), ("J_o", v.jo)):
+            out += _jacobian(name, mat, d)
     out.append(r"\subsection{Singularity polynomials}")
     for s in d.singularities:
-        out.append(rf"\paragraph{{{tex_escape(s.name)}}} {tex_escape(s.meaning)}. "
-                   f"Constant factor ${latex(s.constant)}$, irreducible factors:")
-        for k, (f, mult) in enumerate(s.factors, 1):
+        loci, never = _classified_factors(d, s)
+        out.append(rf"\paragraph{{{tex_escape(s.name)}}} {tex_escape(s.meaning)}. ")
+        if never:
+            out.append("Factors that vanish nowhere (left out below): the constant "
+                       f"${latex(s.constant)}$, "
+                       + ", ".join(f"${latex(f)}$ (" + (f"power {m}; " if m > 1 else "")
+                                   + f"{why})" for f, m, why in never) + ".")
+        else:
+            out.append(f"Constant factor ${latex(s.constant)}$.")
+        out.append("The irreducible factors whose zero sets are the locus:" if loci else
+                   "No factor vanishes anywhere: never singular.")
+        for k, (f, mult) in enumerate(loci, 1):
             name = f"f_{{{k}}}" + (f"^{{{mult}}}" if mult > 1 else "")
-            terms = len(sp.Add.make_args(f))
-            if terms > LONG_FACTOR_TERMS:  # pages of monomials help no reader
-                degrees = sp.Poly(f, *sorted(f.free_symbols, key=str)).degree_list()
-                out.append(f"${name}$: irreducible, {terms} terms; degrees " + ", ".join(
-                    f"{d} in ${latex(v)}$" for v, d in zip(
-                        sorted(f.free_symbols, key=str), degrees))
-                    + r" (evaluated by the generated \texttt{singularities}).")
-                continue
-            out.append(broken_math(name, f))
-        if not s.factors:
-            out.append("(none: never singular).")
+            out.append(_polynomial(name, f, d))
         notes = d.mechanism.singularity_notes
         if s.name in notes:
             out.append(tex_escape(notes[s.name]))
+    return out
+
+
+def _classified_factors(d, s):
+    """The factors of a singularity polynomial that define a locus, and those that do not
+    (free of the configuration, or positive for every real configuration) with the reason."""
+    from ..kinematics.ik_plan import _definite
+
+    m = d.mechanism
+    values = {c.symbol: c.value for c in m.constants}
+    fixed = set(m.geometric) | set(values)
+    loci, never = [], []
+    for f, mult in s.factors:
+        g = sp.expand(f.subs(values))
+        if g.is_number and g != 0:
+            never.append((f, mult, "a non-zero constant"))
+        elif _definite(g):
+            never.append((f, mult, "positive for all real values"))
+        elif not (f.free_symbols - fixed):
+            never.append((f, mult, "free of the configuration: a condition on the geometry"))
+        else:
+            loci.append((f, mult))
+    return loci, never
+
+
+def _jacobian(name: str, mat, d) -> list[str]:
+    """The matrix itself where it fits the page; else its pattern (entries named by row and
+    column, zeros shown) and the entries, in full where they are short."""
+    mat = mat.applyfunc(sp.expand)
+    if all(not is_long(e) for e in mat):
+        return [matrix_math(name, mat.applyfunc(sp.factor))]
+
+    def entry(i, j):
+        return f"({name})_{{{i + 1}{j + 1}}}" if mat.cols < 10 else f"({name})_{{{i + 1},{j + 1}}}"
+
+    rows = [" & ".join("0" if mat[i, j] == 0 else entry(i, j) for j in range(mat.cols))
+            for i in range(mat.rows)]
+    out = ["\\begin{align*}\n" + f"{name} &= \\begin{{bmatrix}}" + r"\\".join(rows)
+           + "\\end{bmatrix}\n\\end{align*}", "with"]
+    for i in range(mat.rows):
+        for j in range(mat.cols):
+            if mat[i, j] != 0:
+                e = mat[i, j]
+                out.append(_polynomial(entry(i, j), e if is_long(e) else sp.factor(e), d))
     return out
 
 
