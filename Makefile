@@ -38,10 +38,7 @@ bench: install
 report: install
 	@bash scripts/install-system-deps.sh --latex
 	$(PY) -m bonered_alg.cli derive
-	cd derivations && for f in *.tex; do \
-	  SOURCE_DATE_EPOCH=0 latexmk -pdf -interaction=nonstopmode -halt-on-error -quiet "$$f" || exit 1; \
-	done
-	$(PY) -m bonered_alg.report.layout_check derivations/*.log
+	$(PY) -m bonered_alg.cli report
 	cd derivations && latexmk -c -quiet >/dev/null
 
 # the pinned Python packages: the newest versions pyproject.toml allows, on purpose only

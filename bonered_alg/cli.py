@@ -1,4 +1,5 @@
-"""Command line: ``bonered-alg derive [NAMES] [--force] [--engine E]`` and friends."""
+"""Command line: ``bonered-alg derive [NAMES] [--force] [--engine E]`` and friends
+(``list``, ``info``, ``workspace``, ``comparison``, ``report``, ``--version``)."""
 
 from __future__ import annotations
 
@@ -37,27 +38,140 @@ def _workspace_parser(sub) -> None:
     w.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
+def default_root() -> Path:
+    """The project the package was installed from (an editable install: the folder holding
+    ``pyproject.toml`` above the package), else the current directory."""
+    here = Path(__file__).resolve().parents[1]
+    return here if (here / "pyproject.toml").is_file() and (here / "bonered_alg").is_dir() \
+        else Path(".").resolve()
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("bonered_alg")
+    except PackageNotFoundError:  # run from a source tree that is not installed
+        return "unknown (not installed)"
+
+
+def info(name: str) -> str:
+    """What the generated module of ``name`` offers: its pose, joints, modes, parameters,
+    functions and status codes."""
+    import importlib
+
+    module = importlib.import_module(f"bonered_alg.generated.{name}")
+    units = dict(zip(module.POSE, module.POSE_UNITS))
+    lines = [f"{module.MECHANISM}: {module.SOURCE}",
+             f"  module      bonered_alg.generated.{name} (derivation "
+             f"{module.DERIVATION_HASH[:12]}, {module.OPERATION_COUNT} operations)",
+             "  pose        " + ", ".join(f"{c} [{units[c]}]" for c in module.POSE),
+             "  joints      " + ", ".join(f"{q} [{u}]" for q, u in
+                                         zip(module.JOINTS, module.JOINT_UNITS)),
+             f"  IK modes    {module.MODES} (bits: " + ", ".join(
+                 f"{q}: bit {b}" for q, b in module.MODE_BITS) + ")",
+             "  FK modes    " + (str(getattr(module, "FK_MODES", 0) or "none generated"))
+             + (f" ({module.FK_NOTE})" if getattr(module, "FK_NOTE", "") else ""),
+             "  parameters  " + ", ".join(
+                 f"{k} = {v:g} {module.PARAMETER_UNITS.get(k, '').strip('1 ')}".rstrip()
+                 for k, v in module.PARAMETERS.items()),
+             "  limits      " + (", ".join(str(lim[0]) for lim in module.LIMITS)
+                                 if getattr(module, "LIMITS", ()) else "none declared"),
+             "  functions   " + ", ".join(sorted(
+                 n for n, v in vars(module).items() if callable(v) and not n.startswith("_")
+                 and getattr(v, "__module__", None) == module.__name__)),
+             "  status codes"]
+    lines += [f"    {code:2d} {text}" for code, text in sorted(module.STATUS.items())]
+    return "\n".join(line for line in lines if line)
+
+
+def report(root: Path, names: list[str]) -> int:
+    """Compile ``derivations/<name>.tex`` to PDF and check the layout targets."""
+    import shutil
+    import subprocess
+
+    from .report.layout_check import layout_problems
+
+    if shutil.which("latexmk") is None:
+        print("bonered-alg report: error: latexmk is not installed (Debian: apt-get install "
+              "latexmk texlive-latex-base texlive-latex-recommended, or run make report)",
+              file=sys.stderr)
+        return 2
+    folder = root / "derivations"
+    problems = []
+    for name in names:
+        tex = folder / f"{name}.tex"
+        run = subprocess.run(["latexmk", "-pdf", "-interaction=nonstopmode", "-halt-on-error",
+                              "-quiet", tex.name], cwd=folder, capture_output=True, text=True,
+                             env={**__import__("os").environ, "SOURCE_DATE_EPOCH": "0"})
+        if run.returncode != 0:
+            problems.append(f"{name}: pdflatex failed (see derivations/{name}.log)")
+            continue
+        problems += layout_problems((folder / f"{name}.log").read_text(errors="replace"), name)
+        print(f"{name}: derivations/{name}.pdf", flush=True)
+    for line in problems:
+        print(f"bonered-alg report: {line}", file=sys.stderr)
+    return 1 if problems else 0
+
+
+def _names(given: list[str], known: tuple[str, ...], command: str,
+           extra: tuple[str, ...] = ()) -> list[str]:
+    """``given`` checked against ``known`` before any work starts."""
+    unknown = [n for n in given if n not in known + extra]
+    if unknown:
+        raise BoneredError(f"{command}: unknown mechanism {', '.join(map(repr, unknown))}; "
+                           f"known: {', '.join(known + extra)}")
+    return list(given)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="bonered-alg", description=__doc__)
+    parser.add_argument("--version", action="version", version=f"bonered_alg {_version()}")
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("derive", help="derive mechanisms and write generated/ and derivations/")
     p.add_argument("names", nargs="*", help="mechanisms (default: all)")
     p.add_argument("--force", action="store_true", help="re-derive even if up to date")
     p.add_argument("--engine", choices=["singular", "sympy"], help="Groebner engine")
-    p.add_argument("--root", type=Path, default=Path("."), help="project root")
+    p.add_argument("--root", type=Path, default=None,
+                   help="project root (default: the project the package was installed from)")
+    p.add_argument("--quiet", action="store_true", help="no per-stage progress")
     sub.add_parser("list", help="list the mechanisms")
+    i = sub.add_parser("info", help="what a generated module offers (pose, joints, modes, "
+                       "parameters, functions, status codes)")
+    i.add_argument("mechanism")
+    r = sub.add_parser("report", help="compile the derivation reports to PDF (latexmk) and "
+                       "check that nothing runs off the page")
+    r.add_argument("names", nargs="*", help="reports (default: all)")
+    r.add_argument("--root", type=Path, default=None, help="project root")
     _workspace_parser(sub)
     c = sub.add_parser("comparison", help="the papers' workspace comparison (000 Table 2, "
                        "001 Table 1): tables and plots in derivations/")
     c.add_argument("--force", action="store_true", help="recompute even if up to date")
     c.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
-    c.add_argument("--root", type=Path, default=Path("."), help="project root")
+    c.add_argument("--root", type=Path, default=None, help="project root")
     args = parser.parse_args(argv)
     from .registry import REGISTRY
 
+    if getattr(args, "root", None) is None and args.command in ("derive", "report",
+                                                                  "comparison"):
+        args.root = default_root()
     if args.command == "list":
         print("\n".join(REGISTRY))
         return 0
+    try:
+        if args.command == "info":
+            _names([args.mechanism], REGISTRY, "info")
+            print(info(args.mechanism))
+            return 0
+        if args.command == "report":
+            reports = ("study_algebra", "bone_reduction_workspace")
+            names = _names(args.names, REGISTRY, "report", reports) or [*REGISTRY, *reports]
+            return report(Path(args.root).resolve(), names)
+        if args.command == "derive":
+            _names(args.names, REGISTRY, "derive")
+    except BoneredError as exc:
+        print(f"bonered-alg: error: {exc}", file=sys.stderr)
+        return 2
     if args.command in ("workspace", "comparison"):
         try:
             if args.command == "workspace":
@@ -79,7 +193,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         engine = get_engine(args.engine)
         print(f"Groebner engine: {engine.name}", flush=True)
-        derive_all(args.root.resolve(), args.names or None, args.force, engine)
+        derive_all(args.root.resolve(), args.names or None, args.force, engine,
+                   progress=None if args.quiet else print)
     except (BoneredError, KeyError, NotImplementedError) as exc:
         print(f"bonered-alg: error: {exc}", file=sys.stderr)
         return 2

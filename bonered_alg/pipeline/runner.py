@@ -27,22 +27,35 @@ def current_hash(target: str | ModuleType) -> str:
 
 def derive(target: str | ModuleType, engine: Engine | None = None,
            budget_s: float = DEFAULT_BUDGET_S, use_cache: bool = True,
-           algebra: Algebra | None = None) -> Record:
-    """Every stage for one mechanism (registered name, or a declaration module), in memory."""
+           algebra: Algebra | None = None, progress=None) -> Record:
+    """Every stage for one mechanism (registered name, or a declaration module), in memory;
+    ``progress`` (e.g. ``print``) is told each stage and its time as it ends."""
     t0 = time.perf_counter()
     module = load(target) if isinstance(target, str) else target
     mech = stages.build(module)
     algebra = algebra or Algebra.default(engine, budget_s, use_cache)
     d = Derivation(mech, current_hash(target))
-    d = stages.eliminate(d, algebra)
-    d = stages.plan(d, algebra)
-    d = stages.analyse(d, algebra)
+    clock = [time.perf_counter()]
+
+    def done(stage: str) -> None:
+        now = time.perf_counter()
+        if progress is not None:
+            progress(f"  {mech.name}: {stage} {now - clock[0]:.1f} s "
+                     f"(elapsed {now - t0:.1f} s)", flush=True)
+        clock[0] = now
+
+    for name, stage in (("elimination", stages.eliminate), ("IK plan", stages.plan),
+                        ("analyses", stages.analyse)):
+        d = stage(d, algebra)
+        done(name)
     d = stages.specify(d)
     t1 = time.perf_counter()
     gm = stages.import_generated(stages.generate(d))
+    done("code generation")
     t2 = time.perf_counter()
     studies = stages.run_studies(d, gm)
     verdicts = stages.verify(d, gm, studies)
+    done("studies and verification")
     t3 = time.perf_counter()
     d = replace(d, timings=frozen_map({**d.timings, "code generation": t2 - t1,
                                        "studies and verification": t3 - t2, "total": t3 - t0}))
@@ -55,7 +68,7 @@ def write(record: Record, root: Path) -> list[Path]:
 
 
 def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
-               engine: Engine | None = None, log=print) -> dict[str, str]:
+               engine: Engine | None = None, log=print, progress=None) -> dict[str, str]:
     """Derive and write each mechanism whose outputs are missing or out of date, and the
     record of the Study-parameter framework (``papers/study_algebra.py``); where anything
     was derived, the record of the engine and packages used (:mod:`.toolchain`)."""
@@ -71,7 +84,7 @@ def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
             status[name] = "up to date"
             continue
         t0 = time.perf_counter()
-        record = derive(name, engine=engine)
+        record = derive(name, engine=engine, progress=progress)
         changed = write(record, root)
         log(f"{name}: derived in {time.perf_counter() - t0:.1f} s; wrote "
             + (", ".join(str(p.relative_to(root)) for p in changed) or "nothing new"))

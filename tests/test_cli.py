@@ -1,0 +1,50 @@
+"""The command line a new user meets first (issue 14, item 4): --version, info, and names
+checked before any work starts."""
+
+import subprocess
+import sys
+
+import pytest
+
+from bonered_alg import cli
+from bonered_alg.registry import REGISTRY
+
+
+def test_version():
+    out = subprocess.run([sys.executable, "-m", "bonered_alg.cli", "--version"],
+                         capture_output=True, text=True)
+    assert out.returncode == 0
+    assert out.stdout.startswith("bonered_alg ") and out.stdout.split()[1][0].isdigit()
+
+
+@pytest.mark.parametrize("command", ["derive", "info", "report"])
+def test_unknown_mechanism_is_one_line_and_exit_2(command, capsys, monkeypatch):
+    from bonered_alg.pipeline import runner
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started before the names were checked")
+
+    monkeypatch.setattr(runner, "derive_all", no_work)
+    assert cli.main([command, "nosuch"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "'nosuch'" in err
+    assert all(name in err for name in REGISTRY)
+
+
+def test_info_describes_the_generated_module(capsys):
+    from bonered_alg.generated import planar_tripod as m
+
+    assert cli.main(["info", "planar_tripod"]) == 0
+    text = capsys.readouterr().out
+    for joint in m.JOINTS:
+        assert joint in text
+    assert f"IK modes    {m.MODES}" in text
+    for code, meaning in m.STATUS.items():
+        assert f"{code:2d} {meaning}" in text
+    assert "jacobian" in text and "ik_status" in text
+
+
+def test_default_root_is_the_project_not_the_current_directory(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    root = cli.default_root()
+    assert (root / "pyproject.toml").is_file() and (root / "bonered_alg" / "cli.py").is_file()
