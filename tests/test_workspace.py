@@ -184,6 +184,11 @@ def test_workspace_command_writes_table_and_plots(tmp_path, capsys):
     (["--axis", "x=0:1"], "3 finite numbers"),
     (["--axis", "x=0:10:1", "--param", "rr=3"], "unknown parameter 'rr'"),
     (["--axis", "x=0:10:1", "--limit", "zz*=0:1"], "no limit matches 'zz\\*'"),
+    # issue 14: each malformed option says which form it expects, a bad mode is caught
+    # before the scan starts
+    (["--axis", "x"], "--axis 'x': expected NAME=LO:HI:STEP"),
+    (["--axis", "x=0:10:1", "--limit", "q*"], "--limit 'q\\*': expected PATTERN=LO:HI"),
+    (["--axis", "x=0:10:1", "--mode", "99"], "working modes \\[99\\] invalid"),
 ])
 def test_workspace_command_errors(argv, match, tmp_path, capsys):
     base = ["workspace", "stewart", "--fix", "y=0", "--fix", "z=220", "--fix", "alpha=0",
@@ -192,6 +197,30 @@ def test_workspace_command_errors(argv, match, tmp_path, capsys):
     err = capsys.readouterr().err
     assert rc == 2
     assert re.search(match, err), err
+    assert "samples" not in err  # before the banner: no work started
+    assert len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["nosuch", "--axis", "x=0:1:1"], "unknown mechanism 'nosuch'; generated: .*stewart"),
+    (["pro_hep_lct", "--axis", "Xu=0:1:1", "--fix", "Yu=200", "--fix", "Xd=0", "--fix", "Yd=100",
+      "--limit", "q*=0:1"], "declares no LIMITS"),
+])
+def test_workspace_command_mechanism_errors(argv, match, tmp_path, capsys):
+    rc = main(["workspace", *argv, "--no-progress", "--out", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert rc == 2 and re.search(match, err), err
+
+
+def test_workspace_command_warns_where_the_grid_cuts_the_workspace(tmp_path, capsys):
+    """A grid inside the workspace: every range ends at the grid, and the summary says so
+    instead of presenting the grid's bounds as the workspace's."""
+    rc = main(["workspace", "stewart", "--axis", "x=-10:10:10", "--fix", "y=0", "--fix",
+               "z=220", "--fix", "alpha=0", "--fix", "beta=0", "--fix", "gamma=0",
+               "--workers", "1", "--no-progress", "--out", str(tmp_path)])
+    out = capsys.readouterr().out
+    assert rc == 0 and "3 of 3 samples reachable" in out, out
+    assert "cut by the lower and upper grid edge" in out
 
 
 def test_overlay_is_deterministic(tmp_path):

@@ -12,18 +12,53 @@ import numpy as np
 
 from ..fileio import atomic_write_text
 from .grid import ANGLES, Axis, Grid, fixed_from_user, user_unit, user_value
-from .membership import Criteria, load_module
+from .membership import Criteria
 from .plots import overlay
 from .scan import ScanResult, scan
 
 POINTS_LIMIT = 2_000_000  # reachable samples written to the points CSV at most
 
 
+FORMS = {"--axis": "NAME=LO:HI:STEP", "--limit": "PATTERN=LO:HI", "--fix": "NAME=VALUE",
+         "--param": "NAME=VALUE"}
+
+
 def _pair(text: str, what: str) -> tuple[str, str]:
     name, sep, value = text.partition("=")
     if not sep or not name or not value:
-        raise ValueError(f"{what} {text!r}: expected NAME=VALUE")
+        raise ValueError(f"{what} {text!r}: expected {FORMS.get(what, 'NAME=VALUE')}")
     return name.strip(), value.strip()
+
+
+def _module(name: str):
+    """The generated module of ``name``, with an error that says which names exist."""
+    import importlib
+    import pkgutil
+
+    from .. import generated
+    from ..registry import REGISTRY
+
+    present = sorted(m.name for m in pkgutil.iter_modules(generated.__path__))
+    if name not in present:
+        if name in REGISTRY:
+            raise ValueError(f"no generated module for mechanism {name!r}; run `make derive` "
+                             "(or `bonered-alg derive`) first")
+        raise ValueError(f"unknown mechanism {name!r}; generated: {', '.join(present)}")
+    return importlib.import_module(f"bonered_alg.generated.{name}")
+
+
+def _dask_client(address: str):
+    """A dask client for ``address``, or one clear error."""
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise ValueError("--dask needs dask.distributed: pip install 'bonered_alg[cluster]'"
+                         ) from None
+    try:
+        return Client(address, timeout="10s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise ValueError(f"--dask {address!r}: no dask scheduler reachable there "
+                         f"({type(exc).__name__}: {exc})") from None
 
 
 def _numbers(text: str, count: int, what: str) -> list[float]:
@@ -119,14 +154,18 @@ def points_csv(res: ScanResult) -> str | None:
 
 
 def workspace(args) -> int:
-    module = load_module(args.mechanism)
+    module = _module(args.mechanism)
     axes = parse_axes(args.axis)
     if not axes:
         raise ValueError("give at least one --axis NAME=LO:HI:STEP")
     fixed = fixed_from_user(module.POSE, dict(_pair(f, "--fix") for f in args.fix))
     grid = Grid(tuple(module.POSE), tuple(axes), fixed)
     params = parse_params(args.param, module)
+    if args.limit and not getattr(module, "LIMITS", ()):
+        raise ValueError(f"{module.MECHANISM} declares no LIMITS: --limit has nothing to "
+                         "override")
     criteria = Criteria(tuple(args.mode) or (0,), parse_limits(args.limit), args.min_margin)
+    criteria.check(module)  # modes and limit names, before the scan starts
     client = None
     if args.dask:
         client = "local" if args.dask == "local" else _dask_client(args.dask)
@@ -150,16 +189,19 @@ def workspace(args) -> int:
                                out / f"{module.MECHANISM}_{a}_{b}")
     print(f"{res.count} of {res.samples} samples reachable in {res.seconds:.2f} s "
           f"({res.rate:.3g} samples/s)")
-    for a in axes:
+    if res.count == 0:
+        print("  no reachable sample: widen the axes, move the fixed coordinates into the "
+              "workspace, or relax --limit / --mode")
+    for a in axes if res.count else ():
         lo, hi = res.ranges.get(a.name, (math.nan, math.nan))
         unit = user_unit(a.name)
+        edge = [side for side, at in (("lower", lo <= a.lo + a.step / 2),
+                                      ("upper", hi >= a.hi - a.step / 2)) if at and a.n > 1]
         print(f"  {a.name}: [{user_value(a.name, lo):.4g}, {user_value(a.name, hi):.4g}] {unit}"
-              f" (step {user_value(a.name, a.step):.4g})")
+              f" (step {user_value(a.name, a.step):.4g})"
+              + (f"; cut by the {' and '.join(edge)} grid edge: the workspace may extend "
+                 "beyond it" if edge else ""))
     print("wrote " + ", ".join(str(p) for p in written))
     return 0
 
 
-def _dask_client(address: str):
-    from dask.distributed import Client
-
-    return Client(address)
