@@ -133,8 +133,7 @@ def _sum_lines(terms: list, width: float) -> list[str]:
             if current:
                 lines.append(current)
                 current = ""
-            coeff, rest = (-term, term) if sign == "-" else (term, term)
-            parts = _lines(coeff if sign == "-" else term, width - 2)
+            parts = _lines(-term if sign == "-" else term, width - 2)  # the sign is in lead
             parts[0] = lead + parts[0]
             lines += parts[:-1]
             current = parts[-1]
@@ -158,7 +157,8 @@ def _factor_tex(f) -> str:
 def _product_lines(expr: sp.Mul, width: float) -> list[str]:
     """A product packed factor by factor; a factor that is a long sum (or a power of one) is
     opened with \\bigl( and closed with \\bigr) on the line where its last term falls."""
-    coeff, factors = expr.as_coeff_mul()
+    coeff, rest = expr.as_coeff_Mul()
+    factors = rest.as_ordered_factors() if rest.is_Mul else [rest]  # sympy's print order
     numer = [f for f in factors if not (f.is_Pow and f.exp.is_negative)]
     denom = [1 / f for f in factors if f.is_Pow and f.exp.is_negative]
     lines: list[str] = []
