@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -103,7 +104,7 @@ def report(root: Path, names: list[str]) -> int:
         tex = folder / f"{name}.tex"
         run = subprocess.run(["latexmk", "-pdf", "-interaction=nonstopmode", "-halt-on-error",
                               "-quiet", tex.name], cwd=folder, capture_output=True, text=True,
-                             env={**__import__("os").environ, "SOURCE_DATE_EPOCH": "0"})
+                             env={**os.environ, "SOURCE_DATE_EPOCH": "0"})
         if run.returncode != 0:
             problems.append(f"{name}: pdflatex failed (see derivations/{name}.log)")
             continue
