@@ -49,7 +49,7 @@ lock:
 	mv constraints.txt.new constraints.txt
 
 lint: install
-	$(VENV)/bin/ruff check bonered_alg tests bench
+	$(VENV)/bin/ruff check bonered_alg tests bench examples
 
 clean:
 	rm -rf .cache .pytest_cache derivations/*.pdf

@@ -150,6 +150,7 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--force", action="store_true", help="recompute even if up to date")
     c.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
     c.add_argument("--root", type=Path, default=None, help="project root")
+    c.add_argument("--quiet", action="store_true", help="no progress per part")
     args = parser.parse_args(argv)
     from .registry import REGISTRY
 
@@ -181,7 +182,8 @@ def main(argv: list[str] | None = None) -> int:
                 return command.workspace(args)
             from .studies.comparison_report import write
 
-            written = write(Path(args.root).resolve(), args.workers, args.force)
+            written = write(Path(args.root).resolve(), args.workers, args.force,
+                            None if args.quiet else print)
             print("comparison: " + (", ".join(p.name for p in written) if written
                                     else "up to date"))
             return 0

@@ -58,4 +58,8 @@ MECHANISM = declare(
     forward_kinematics="the forward kinematics of a 3-RRR is a univariate sextic (six "
                        "assembly modes); back-substitution steps of degree > 2 are not "
                        "generated yet",
+    # mode 0 is the assembly as built: at this home pose the actuators stand at theta =
+    # 114, 81 and 4 deg (tan-halves 1.55, 0.86, 0.04); the other roots are the other modes
+    home=(80.0, 80.0, 0.1),
+    home_joints={U[0]: 1.55, U[1]: 0.86, U[2]: 0.04},
 )

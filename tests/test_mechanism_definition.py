@@ -105,6 +105,49 @@ def test_a_parameter_needs_a_finite_value(value):
         load_declaration(mod)
 
 
+@pytest.mark.parametrize("fields, message", [
+    (dict(parameters=(Parameter("a", 1.0, "mm", "offset", domain="length"),)),
+     r"parameter 'a' has domain 'length'; expected one of \('real', 'positive'"),
+    (dict(parameters=(Parameter("a", -1.0, "mm", "offset", domain="positive"),)),
+     "parameter 'a' is declared positive but its value is -1.0"),
+    (dict(home=(0.0,)), r"home must be 2 finite numbers, one per pose coordinate \('px', "
+                        r"'py'\)"),
+    (dict(home_joints={u: 1.0}), "home_joints .* needs the home pose"),
+    (dict(home=(0.0, 0.0), home_joints={s: 1.0}), "home_joints names s, which is not an "
+                                                   "actuated joint"),
+])
+def test_domains_and_the_physical_branch_are_checked(fields, message):
+    with pytest.raises(MechanismDefinitionError, match=message):
+        load_declaration(toy_module(**fields))
+
+
+def test_the_declared_branch_chooses_the_root_of_mode_0():
+    """kinematics.branches.orient: q^2 - (x^2 + 4) at x = 0 has the roots +-2; declaring
+    -2 negates the generator (mode 0 then takes -2), declaring 2 keeps it; a value as near
+    one root as the other, a linear step, or a home pose without real roots are errors."""
+    from bonered_alg.kinematics.branches import orient
+    from bonered_alg.kinematics.ik_plan import IKStep
+
+    q, x, p = sp.symbols("q x p", real=True)
+    quad = IKStep(q, q**2 - x**2 - 4, 2, sp.Integer(1), sp.Integer(0), -x**2 - 4, "t")
+    lin = IKStep(p, p - q, 1, sp.Integer(0), sp.Integer(1), -q, "t")
+    steps, rec = orient("toy", [quad, lin], {}, (x,), (0.0,), {q: -1.9}, {})
+    assert rec[0].negated and rec[0].mode0 == -2.0
+    assert steps[0].generator == -(q**2 - x**2 - 4) and steps[1] is lin
+    root0 = (-steps[0].B + sp.sqrt(steps[0].B**2 - 4 * steps[0].A * steps[0].C)) / (
+        2 * steps[0].A)
+    assert root0.subs(x, 0) == -2  # the '+sqrt' root of the negated generator
+    steps, rec = orient("toy", [quad, lin], {}, (x,), (0.0,), {q: 2.5}, {})
+    assert not rec[0].negated and steps[0] is quad
+    with pytest.raises(MechanismDefinitionError, match="as near the one root"):
+        orient("toy", [quad], {}, (x,), (0.0,), {q: 0.0}, {})
+    with pytest.raises(MechanismDefinitionError, match="linear"):
+        orient("toy", [quad, lin], {}, (x,), (0.0,), {p: 1.0}, {})
+    bad = IKStep(q, q**2 + x**2 + 4, 2, sp.Integer(1), sp.Integer(0), x**2 + 4, "t")
+    with pytest.raises(MechanismDefinitionError, match="no real roots"):
+        orient("toy", [bad], {}, (x,), (0.0,), {q: 1.0}, {})
+
+
 def test_former_hooks_are_rejected():
     mod = toy_module()
     mod.verify = lambda d: []

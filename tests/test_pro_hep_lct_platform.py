@@ -158,7 +158,7 @@ def test_fk_of_ik_is_identity(gen):
     o = np.asarray(paper.TABLE5_ENTRY)
     ang = rng.uniform(-25, 25, 30)
     axes = rng.choice(["x", "y"], 30)
-    poses = np.stack([tool.rcm_path(o, ax, [a], rng.uniform(20, 120))[0]
+    poses = np.stack([tool.rcm_path(o, ax, [np.radians(a)], rng.uniform(20, 120))[0]
                       for ax, a in zip(axes, ang)])
     joints, status = tool.tool_ik(poses, gen, mode=paper.TABLE5_MODE, limits=False)
     assert np.all(status == 0)

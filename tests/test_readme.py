@@ -25,3 +25,14 @@ def test_readme_examples_run(monkeypatch):
     assert np.isfinite(namespace["everything"]).any()
     assert namespace["res"].count > 0
     assert namespace["g"].MODES == 8
+
+
+def test_readme_documents_every_status_code():
+    """The README's table of status codes lists each code of the runtime under its name."""
+    from bonered_alg.runtime import status as st
+
+    text = (ROOT / "README.md").read_text()
+    names = {v: k for k, v in vars(st).items() if k.isupper() and isinstance(v, int)
+             and k not in ("DISC_RTOL", "DET_RTOL")}
+    rows = dict(re.findall(r"^\| (\d+) \| `([A-Z_]+)` \|", text, flags=re.M))
+    assert {int(c): n for c, n in rows.items()} == {c: names[c] for c in st.STATUS}

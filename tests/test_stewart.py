@@ -79,3 +79,39 @@ def test_distance_leg_is_certified_and_rps_leg_is_not():
     assert d is not None
     with pytest.raises(sphere_leg.NotADistanceLeg, match="dimension 5"):
         sphere_leg.certify(rps, d, closure.platform, (u, *e), {}, {})
+
+
+def _plucker_det(pose):
+    """det of the six leg lines' normalized Plücker rows (direction; A_k x direction) from
+    the independent model: zero exactly where the lines are linearly dependent."""
+    v, _ = ind.legs(pose)
+    base, _ = ind.corners()
+    s = v / np.linalg.norm(v, axis=1)[:, None]
+    return np.linalg.det(np.hstack([s, np.cross(base, s)]))
+
+
+def test_forward_singularity_is_where_the_leg_lines_are_dependent():
+    """det_forward_P (Jo with the Study quadric's gradient, from the ideal) changes sign on a
+    line of poses exactly where the independent Plücker determinant does (issue 14, item 3),
+    and not where it does not."""
+    alphas = np.linspace(-1.4, 1.4, 141)
+    poses = np.zeros((len(alphas), 6))
+    poses[:, 2], poses[:, 3], poses[:, 4] = 210.0, alphas, 0.2
+    ours = gen.singularities(poses, gen.ik(poses, limits=False))["det_forward_P"]
+    theirs = np.array([_plucker_det(p) for p in poses])
+    assert np.isfinite(ours).all()
+    flips_ours = np.flatnonzero(np.sign(ours[:-1]) != np.sign(ours[1:]))
+    flips_theirs = np.flatnonzero(np.sign(theirs[:-1]) != np.sign(theirs[1:]))
+    assert len(flips_ours) > 0 and flips_ours.tolist() == flips_theirs.tolist()
+    # bisected on our polynomial, the independent determinant vanishes there too
+    a, b = poses[flips_ours[0]].copy(), poses[flips_ours[0] + 1].copy()
+    fa = gen.singularities(a, gen.ik(a, limits=False))["det_forward_P"]
+    for _ in range(55):
+        mid = (a + b) / 2
+        fm = gen.singularities(mid, gen.ik(mid, limits=False))["det_forward_P"]
+        a, b, fa = (mid, b, fm) if np.sign(fm) == np.sign(fa) else (a, mid, fa)
+    assert abs(_plucker_det(a)) < 1e-9 * np.abs(theirs).max()
+    # at home the six lines are independent
+    home = np.array([0, 0, 210.0, 0, 0, 0])
+    assert abs(_plucker_det(home)) > 1e-3
+    assert gen.singularities(home, gen.ik(home))["det_forward_P"] != 0

@@ -51,6 +51,20 @@ def test_the_declaration_is_the_one_in_the_readme():
     assert body.strip() in text
 
 
+def test_mode_zero_is_the_declared_assembly(record):
+    """The elimination's sign of the generator of u2 gives the other elbow at home; the
+    declared branch negates it, so mode 0 is the assembly as built."""
+    gen = record.generated.module
+    q = gen.ik(np.array(gen.HOME))
+    assert np.allclose(q, [1.55, 0.86, 0.04], atol=0.01)
+    flipped = {str(b.joint) for b in record.derivation.branches if b.negated}
+    assert flipped == {"u2"}
+    want = _independent_angles(np.array(gen.HOME))
+    for k in range(3):  # and it is one of the geometry's two elbows of each leg
+        assert min(abs(np.angle(np.exp(1j * (2 * np.arctan(q[k]) - a)))) for a in want[k]) \
+            < 1e-9
+
+
 def test_ik_every_working_mode_against_planar_geometry(record):
     gen = record.generated.module
     assert gen.MODES == 8 and gen.JOINTS == ("u1", "u2", "u3")
@@ -90,7 +104,8 @@ def test_it_gets_a_report_and_singularities(record):
     files = outputs.files(record)
     assert set(files) == {"generated/planar_3rrr.py", "derivations/planar_3rrr.tex",
                           "derivations/planar_3rrr.verification.json",
-                          "derivations/planar_3rrr.algebra.json"}
+                          "derivations/planar_3rrr.algebra.json",
+                          "derivations/planar_3rrr.configurations.png"}
     names = {s.name for s in record.derivation.singularities}
     assert {"det_Ji_platform", "det_Jo_platform", "boundary_u1"} <= names
     assert "not generated" in record.generated.module.FK_NOTE or record.generated.module.FK_NOTE

@@ -67,6 +67,9 @@ class IKModuleSpec:
     # legs of the actuated closures: (closure base body, leg) for the link poses, and the
     # algebraic constants their factors use
     link_legs: Sequence = ()
+    # the declared home pose (POSE order) or None, and (joint, value) of the physical branch
+    home: tuple | None = None
+    physical_branch: tuple = ()
     link_constants: dict | None = None
 
 
@@ -274,10 +277,17 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
         kernels.append(kern)
         functions.append({"name": fname, "inputs": tuple(str(v) for v in inputs),
                           "outputs": tuple(outs), "doc": doc, "kernel": kern.name})
-    sing_kernels = []
+    sing_kernels, sing_matrices = [], []
     for name, expr, meaning in spec.singularities:
         # in the Study coordinates of the pose (computed once by _study), not in the pose:
         # composed with the pose map, a large polynomial makes CSE slow and the kernel long
+        if isinstance(expr, sp.MatrixBase):  # a determinant, evaluated numerically
+            kern = kernel(f"_sing_{name}", [*study, *spec.joints, *par], list(expr),
+                          f"Entries (row-major) of the matrix whose determinant is {name}: "
+                          f"{meaning}")
+            kernels.append(kern)
+            sing_matrices.append((name, kern.name, expr.rows))
+            continue
         expr = sp.sympify(expr)
         stray = expr.free_symbols - set(study) - set(spec.joints) - set(par)
         if stray:
@@ -315,7 +325,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
     rps_kernels = ("_runtime.RPSKernels(coefficients=_rps_coefficients, "
                    "equations=_rps_equations, centres=_rps_centres, platform=_rps_platform, "
                    "study=_rps_study)") if spec.rps else "None"
-    names = ["ik", "ik_all", "ik_status", "ik_and_status", "fk", "fk_status", "jacobian",
+    names = ["ik", "ik_all", "ik_status", "ik_and_status", "ik_joint_status", "ik_explain",
+             "fk", "fk_status", "jacobian",
              "jacobian_status", "jacobian_and_status", "input_jacobian", "output_jacobian",
              "singularities", "limit_values"]
     if passive_names:
@@ -333,7 +344,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
         "derivation_hash": spec.derivation_hash, "total_operations": total,
         "contract": ", ".join(names), "api_version": runtime.API_VERSION, "name": spec.name,
         "operations": [(k.name, k.operations) for k in kernels],
-        "parameters": [{"name": p.name, "value": p.value, "unit": p.unit,
+        "parameters": [{"name": p.name, "value": p.value, "unit": p.unit, "domain": p.domain,
                         "note": p.description + "; " + p.source} for p in spec.parameters],
         "pose": [str(s) for s in spec.pose], "pose_units": list(spec.pose_units),
         "study_pose": [str(s) for s in study], "joints": [str(s) for s in spec.joints],
@@ -351,7 +362,10 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
                    for lim in spec.limits],
         "singularity_meanings": [(n, m) for n, _, m in spec.singularities],
         "kernels": kernels, "steps": _step_rows(steps_src), "fk_steps": _step_rows(fk_src),
-        "singularity_kernels": sing_kernels,
+        "singularity_kernels": sing_kernels, "singularity_matrices": sing_matrices,
+        "pivot_steps": tuple(linear),
+        "home": None if spec.home is None else tuple(float(v) for v in spec.home),
+        "physical_branch": tuple((str(j), float(v)) for j, v in spec.physical_branch),
         "solve_index": tuple(list(spec.joints).index(st.joint) for st in spec.steps),
         "pivots_kernel": "_pivots" if linear else "None",
         "limit_kernel": "_limit_values" if spec.limits else "None",
@@ -403,7 +417,9 @@ def module_source(d, generator: str):
         helical=[h for c in m.actuated_closures for leg in c.legs for h in leg.couplings],
         passive_units=_passive_units(m),
         link_legs=[(c.base, leg) for c in m.actuated_closures for leg in c.legs],
-        link_constants=d.constants)
+        link_constants=d.constants,
+        home=tuple(m.home) if m.home else None,
+        physical_branch=tuple((b.joint, b.declared) for b in d.branches))
     source, ops = write_ik_module(spec)
     return GeneratedModule(m.name, source, frozen_map(ops))
 

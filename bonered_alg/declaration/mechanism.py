@@ -23,7 +23,7 @@ import sympy as sp
 from ..chains.joints import Role
 from ..errors import MechanismDefinitionError, UndefinedParameterError
 from .closures import Closure, UnitCoordinate, UnitRotation, infer_chart
-from .parameters import Constant, Parameter
+from .parameters import DOMAINS, Constant, Parameter
 
 
 @dataclass(frozen=True)
@@ -127,6 +127,10 @@ class Mechanism:
     reading_notes: tuple[str, ...] = ()
     checks: str = ""  # module with verify(derivation, generated, studies) -> [Verdict]
     studies: tuple[str, ...] = ()  # modules with run(derivation, generated) -> Study
+    # the home pose (pose coordinates, in their units) and the joint values there of the
+    # physical branch: mode 0 of the IK is the root nearest each declared value
+    home: tuple[float, ...] = ()
+    home_joints: Mapping[sp.Symbol, float] = field(default_factory=dict)
 
     # ------------------------------------------------------------- derived views
     @property
@@ -206,7 +210,7 @@ def declare(**kwargs) -> Mechanism:
                                              f"{', '.join(missing)}")
     conv = dict(kwargs)
     for key in ("parameters", "joints", "joint_units", "closures", "constants", "analyses",
-                "reading_notes", "studies"):
+                "reading_notes", "studies", "home"):
         if key in conv and not callable(conv[key]):
             conv[key] = tuple(conv[key])
     return Mechanism(**conv)
@@ -256,8 +260,29 @@ def validate(mech: Mechanism) -> None:
         a.check(mech)
     for ref in (*((mech.checks,) if mech.checks else ()), *mech.studies):
         _check_module_reference(mech, ref, "verify" if ref == mech.checks else "run")
+    _check_home(mech)
     if mech.forward_kinematics and not isinstance(mech.forward_kinematics, str):
         _fail(mech, "forward_kinematics must be a string (why it is not generated) or ''")
+
+
+def _finite_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _check_home(mech: Mechanism) -> None:
+    n = len(mech.pose.coordinates)
+    if mech.home and (len(mech.home) != n or not all(map(_finite_number, mech.home))):
+        _fail(mech, f"home must be {n} finite numbers, one per pose coordinate "
+                    f"{tuple(map(str, mech.pose.coordinates))}, got {mech.home!r}")
+    if mech.home_joints and not mech.home:
+        _fail(mech, "home_joints (the physical branch) needs the home pose it holds at: "
+                    "declare home=(...)")
+    for q, v in mech.home_joints.items():
+        if q not in mech.joints:
+            _fail(mech, f"home_joints names {q!r}, which is not an actuated joint (joints: "
+                        f"{list(map(str, mech.joints))})")
+        if not _finite_number(v):
+            _fail(mech, f"home_joints[{q}] must be a finite number, got {v!r}")
 
 
 def _check_roles(mech: Mechanism) -> None:
@@ -288,14 +313,19 @@ def _check_parameters(mech: Mechanism) -> None:
         if p.name in seen:
             _fail(mech, f"parameter {p.name!r} is declared twice")
         seen.add(p.name)
-        ok = (isinstance(p.value, (int, float)) and not isinstance(p.value, bool)
-              and math.isfinite(p.value))
-        if not ok:
+        if not _finite_number(p.value):
             _fail(mech, f"parameter {p.name!r} has value {p.value!r}; expected a finite number "
                         f"in {p.unit or 'its unit'} (where the paper gives none, choose one "
                         "and say so in its source)")
         if not p.name.isidentifier():
             _fail(mech, f"parameter name {p.name!r} is not an identifier")
+        if p.domain not in DOMAINS:
+            _fail(mech, f"parameter {p.name!r} has domain {p.domain!r}; expected one of "
+                        f"{DOMAINS}")
+        if (p.domain == "positive" and not p.value > 0) or (
+                p.domain == "nonnegative" and not p.value >= 0):
+            _fail(mech, f"parameter {p.name!r} is declared {p.domain} but its value is "
+                        f"{p.value}")
 
 
 def _check_closure(mech: Mechanism, closure: Closure, declared: set) -> None:

@@ -6,6 +6,8 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+DOMAINS = ("real", "positive", "nonnegative")
+
 
 @dataclass(frozen=True)
 class Parameter:
@@ -14,13 +16,16 @@ class Parameter:
 
     Every parameter has a finite value: the derivation checks the papers' numbers with it and
     the generated functions use it as their default (callers pass their own as keywords).
-    Where a paper gives no value, choose one and say so in ``source``."""
+    Where a paper gives no value, choose one and say so in ``source``.  ``domain`` is what
+    values a caller may pass (``"positive"`` for a length, ``"nonnegative"``, ``"real"``):
+    the generated functions reject others with an error naming the parameter."""
 
     name: str
     value: float
     unit: str
     description: str
     source: str = ""
+    domain: str = "real"
 
     @property
     def symbol(self) -> sp.Symbol:

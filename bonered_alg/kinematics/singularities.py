@@ -15,7 +15,8 @@ import sympy as sp
 
 @dataclass(frozen=True)
 class FactoredPolynomial:
-    """``constant * prod(factor_i ** multiplicity_i)``."""
+    """``constant * prod(factor_i ** multiplicity_i)``; or, where ``expression`` is a square
+    matrix (``is_determinant``), its determinant, not expanded (no factors)."""
 
     name: str
     expression: sp.Expr
@@ -25,6 +26,10 @@ class FactoredPolynomial:
     # the same quantity in the pose's Study coordinates and the joints, for the generated
     # code, when ``expression`` is written in other (e.g. passive joint) variables
     evaluate: sp.Expr | None = None
+
+    @property
+    def is_determinant(self) -> bool:
+        return isinstance(self.expression, sp.MatrixBase)
 
 
 # a product whose expansion would have more terms than this is factored factor by factor

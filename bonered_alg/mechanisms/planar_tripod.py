@@ -156,8 +156,9 @@ MECHANISM = declare(
             "Rx(alpha) (eq. 11), angles in radians.",
     parameters=(
         Parameter("ra", 190.0, "mm", "circumradius of A1A2A3, B1B2B3 and of the tripod base "
-                  "C1C2C3", "000 Table 1"),
-        Parameter("rb", 190.0, "mm", "circumradius of D1D2D3 (MP2)", "000 Table 1")),
+                  "C1C2C3", "000 Table 1", domain="positive"),
+        Parameter("rb", 190.0, "mm", "circumradius of D1D2D3 (MP2)", "000 Table 1",
+                  domain="positive")),
     constants=(Constant(s3, s3**2 - 3, sp.sqrt(3),
                         "sqrt(3) of the equilateral layouts (eq. 1-2)"),),
     joints=JOINTS,
@@ -205,4 +206,8 @@ MECHANISM = declare(
         "meant."),
     checks="bonered_alg.papers.p000_planar_tripod",
     studies=("bonered_alg.studies.trajectories_000",),
+    # home: the platform 200 mm above the base, level; the tripod legs are then vertical
+    # and as long as the height (000 eq. 18), the positive strokes
+    home=(0.0, 0.0, 200.0, 0.0, 0.0, 0.0),
+    home_joints={q: 200.0 for q in JOINTS[3:]},
 )

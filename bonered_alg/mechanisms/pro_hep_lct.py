@@ -117,18 +117,24 @@ MECHANISM = declare(
     parameters=(
         Parameter("Dz", 108.0, "mm", "height of the upper planar mechanism (Table 1, Pu1)",
                   "recovered from 004 Table 5 path A: q5 = Yu = 180 + (Dz + Dn) tan(phi), "
-                  "rows A 5-30 deg give Dz + Dn = 218.00 (004 Table 4 is missing)"),
+                  "rows A 5-30 deg give Dz + Dn = 218.00 (004 Table 4 is missing)",
+                  domain="positive"),
         Parameter("lq5", 284.0, "mm", "fixed X offset of the upper chain (Table 1, Pu3)",
                   "recovered from 004 Table 5: Xu = lq5 + lq4 = 300 at O with lq4 = 16"),
         Parameter("ld4", 160.0, "mm", "length of the rod driven by q4 (eq. 14)",
                   "recovered from 004 Table 5 path B: q4 with (q5 - q4)^2 + lq4^2 = ld4^2 "
-                  "and Xu = 300 + 218 tan(theta) gives lq4(O) = 16.0, ld4 = 160.0"),
-        Parameter("l1", 168.05, "mm", "first link of lower chain 1 (Table 2, Pd2)", _FIT),
-        Parameter("l2", 168.05, "mm", "second link of lower chain 1 (Table 2, Pd4)", _FIT),
-        Parameter("l3", 168.05, "mm", "first link of lower chain 2 (Table 2, Pd9)", _FIT),
-        Parameter("l4", 168.05, "mm", "second link of lower chain 2 (eq. 15-16)", _FIT),
+                  "and Xu = 300 + 218 tan(theta) gives lq4(O) = 16.0, ld4 = 160.0",
+                  domain="positive"),
+        Parameter("l1", 168.05, "mm", "first link of lower chain 1 (Table 2, Pd2)", _FIT,
+                  domain="positive"),
+        Parameter("l2", 168.05, "mm", "second link of lower chain 1 (Table 2, Pd4)", _FIT,
+                  domain="positive"),
+        Parameter("l3", 168.05, "mm", "first link of lower chain 2 (Table 2, Pd9)", _FIT,
+                  domain="positive"),
+        Parameter("l4", 168.05, "mm", "second link of lower chain 2 (eq. 15-16)", _FIT,
+                  domain="positive"),
         Parameter("d", 149.94, "mm", "length of link d; Pd is its midpoint (Table 2, Pd6)",
-                  _FIT),
+                  _FIT, domain="positive"),
         Parameter("lq4d", 400.0, "mm",
                   "Y offset of the base joint of lower chain 2 (Table 2 Pd7, printed lq4)", _FIT),
         Parameter("c", 60.91, "mm", "X offset of the lower universal joint from Pd (Table 3, "
@@ -136,7 +142,8 @@ MECHANISM = declare(
         Parameter("Dn", 110.0, "mm", "distance from the lower universal joint to the platform "
                   "frame along -Z' (Table 3, P4)",
                   "recovered from 004 Sect. 4 / Table 5: O = [1:0:0:0:0:-150:-90:55] is 110 mm "
-                  "below the plane of Pd, and n = 110/cos(angle) - 10 on both paths")),
+                  "below the plane of Pd, and n = 110/cos(angle) - 10 on both paths",
+                  domain="positive")),
     joints=(t1, w1, q4, q5),
     joint_units=("1 (t1 = tan(q2/2))", "1 (w1 = tan(q3/2))", "mm", "mm"),
     closures=(
@@ -208,4 +215,8 @@ MECHANISM = declare(
         "translations to the universal joints Ud and Uu."),
     checks="bonered_alg.papers.p004_pro_hep_lct",
     studies=("bonered_alg.studies.rcm_paths_004", "bonered_alg.studies.workspace_004"),
+    # home: the tool vertical at the entry point O of 004 Sect. 4; the physical branch is
+    # the paper's working mode, the joints of Table 5 row O (t1, w1, q4; q5 is linear)
+    home=(300.0, 180.0, 239.09, 180.0),
+    home_joints={t1: -0.1343, w1: 0.0214, q4: 20.802},
 )

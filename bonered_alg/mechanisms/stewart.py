@@ -171,13 +171,15 @@ MECHANISM = declare(
             "gives, has the joint spacing as parameters ta = tb = tan(phi/2).",
     parameters=(
         Parameter("ra", 200.0, "mm", "circumradius of the base joints",
-                  "001 Sect. 3: rings of 400 mm diameter"),
+                  "001 Sect. 3: rings of 400 mm diameter", domain="positive"),
         Parameter("rb", 200.0, "mm", "circumradius of the platform joints",
-                  "001 Sect. 3: rings of 400 mm diameter"),
+                  "001 Sect. 3: rings of 400 mm diameter", domain="positive"),
         Parameter("ta", 0.125, "1", "tan(phi_a/2): the base joints of a pair sit at "
-                  "theta_j +- phi_a on the ring", "layout chosen here (not in 000 or 001)"),
+                  "theta_j +- phi_a on the ring", "layout chosen here (not in 000 or 001)",
+                  domain="positive"),
         Parameter("tb", 0.125, "1", "tan(phi_b/2): the platform joints of a pair sit at "
-                  "theta_j + 60 deg +- phi_b", "layout chosen here (not in 000 or 001)")),
+                  "theta_j + 60 deg +- phi_b", "layout chosen here (not in 000 or 001)",
+                  domain="positive")),
     constants=(Constant(s3, s3**2 - 3, sp.sqrt(3), "sqrt(3) of the three-fold layout"),),
     joints=JOINTS,
     joint_units=("mm",) * 6,
@@ -192,4 +194,7 @@ MECHANISM = declare(
                        "(issue 4) and not generated",
     limits=limits,
     checks="bonered_alg.papers.stewart_reference",
+    # the homing pose of 001 Table 1; each leg is then 236.4 mm long (positive strokes)
+    home=HOME,
+    home_joints={q: 236.4 for q in JOINTS},
 )

@@ -184,9 +184,9 @@ MECHANISM = declare(
             "mechanism (B -> end effector C, centre O2); 6 DoF (001 Sect. 2, Fig. 3-4).",
     parameters=(
         Parameter("ra", 200.0, "mm", "circumradius of the base A1A2A3",
-                  "001 Sect. 3: rings of 400 mm diameter"),
+                  "001 Sect. 3: rings of 400 mm diameter", domain="positive"),
         Parameter("rb", 200.0, "mm", "circumradius of B1B2B3 and of the planar triangles",
-                  "001 Sect. 3: rings of 400 mm diameter"),
+                  "001 Sect. 3: rings of 400 mm diameter", domain="positive"),
         Parameter("d", 0.0, "mm", "height of O2 above platform B (eq. 7)",
                   "not given in 001; 0 as in 000 (flat planar stage)")),
     constants=(Constant(s3, s3**2 - 3, sp.sqrt(3),
@@ -235,4 +235,7 @@ MECHANISM = declare(
         "of C above B is not given; 0 is used (the planar stage is flat, as in 000), and every "
         "function takes it."),
     checks="bonered_alg.papers.p001_tripod_planar",
+    # home: 001 Table 1's homing height, level; the 3-RPS legs vertical, positive strokes
+    home=(0.0, 0.0, 210.0, 0.0, 0.0, 0.0),
+    home_joints={q: 210.0 for q in JOINTS[:3]},
 )

@@ -115,8 +115,8 @@ PRINTED = {
 TABLE5_ENTRY = (1.0, 0.0, 0.0, 0.0, 0.0, -150.0, -90.0, 55.0)
 TABLE5_DEPTH = 100.0  # mm, "at 100 mm insertion depths"
 # the working mode of the planar mechanisms that reproduces the printed row O (the paper's
-# "intended working mode"): q4 on its '-sqrt' root (q4 < q5), t1 on its '-sqrt' root
-TABLE5_MODE = 3
+# "intended working mode"): mode 0, the physical branch the declaration names (home_joints)
+TABLE5_MODE = 0
 # (label, axis, angle in deg (about X' for A, Y' for B), printed tan-half-angle,
 #  printed t1, w1, q4, q5, n); 004 Table 5
 TABLE5 = (
@@ -405,7 +405,7 @@ def _insertion_direction_verdict(gen):
     n = {}
     for label, depth in (("+Z' (eq. 8 as printed, l = 100)", -TABLE5_DEPTH),
                          ("-Z' (towards the patient)", TABLE5_DEPTH)):
-        pose = tool.rcm_path(TABLE5_ENTRY, row[1], [row[2]], depth)[0]
+        pose = tool.rcm_path(TABLE5_ENTRY, row[1], [np.radians(row[2])], depth)[0]
         n[label] = float(tool.tool_ik(pose, gen, mode=TABLE5_MODE, limits=False)[0][4])
     plus, minus = n.values()
     return Verdict(

@@ -107,6 +107,7 @@ class Derivation:
     pose_functions: tuple[PoseFunction, ...] = ()
     functions: tuple[InputFunction, ...] = ()
     timings: Mapping[str, float] = field(default_factory=lambda: EMPTY)
+    branches: tuple = ()  # kinematics.branches.Branch per declared joint of home_joints
 
     @property
     def constants(self) -> dict[sp.Symbol, sp.Expr]:

@@ -38,6 +38,7 @@ from ..declaration.mechanism import (
     load_declaration,
 )
 from ..errors import MechanismDefinitionError, NonClosingMechanismError
+from ..kinematics.branches import negate_rows, orient
 from ..kinematics.ik_plan import IKStep
 from ..kinematics.ik_plan import plan as plan_steps
 from ..kinematics.passive import recover as recover_passive
@@ -121,6 +122,8 @@ def _velocity_and_singularities(mech: Mechanism, steps: tuple[IKStep, ...]):
             out.append(factored(f"det_Jo_{closure.point}", jo.det(method="berkowitz"),
                                 f"output singularity of the {closure.name}: det dG/d("
                                 + ", ".join(map(str, pose)) + ")"))
+        else:
+            out += _forward_matrix(closure, jo, pose)
         for s in csteps:
             if s.degree == 2:
                 out.append(factored(
@@ -128,6 +131,28 @@ def _velocity_and_singularities(mech: Mechanism, steps: tuple[IKStep, ...]):
                     f"discriminant of the generator in {s.joint}: the boundary of the "
                     f"reach of the leg driven by {s.joint} (two working modes merge)"))
     return tuple(velocity), tuple(out)
+
+
+def _forward_matrix(closure, jo: sp.Matrix, pose: list) -> list[FactoredPolynomial]:
+    """The forward (type II) singularity of a closure whose IK generators are one fewer
+    than its Study coordinates (a 6-UPS in the chart x0 = 1: six legs, seven coordinates):
+    Jo with the gradient of the Study quadric as a last row.  Its determinant vanishes
+    where a velocity tangent to the Study quadric leaves every generator unchanged, i.e.
+    where the leg lines are linearly dependent; it is a polynomial of high degree, so the
+    generated code evaluates the matrix and its determinant numerically."""
+    from ..algebra.study_symbolic import quadric
+
+    quad = sp.expand(quadric(closure.platform))
+    if jo.shape[1] != jo.shape[0] + 1 or not quad.free_symbols or not (
+            quad.free_symbols <= set(pose)):
+        return []
+    m = sp.ImmutableMatrix(jo.col_join(sp.Matrix([[sp.diff(quad, y) for y in pose]])))
+    return [FactoredPolynomial(
+        f"det_forward_{closure.point}", m, sp.Integer(1), (),
+        f"forward (type II) singularity of the {closure.name}: det of dG/d("
+        + ", ".join(map(str, pose)) + ") with the Study quadric's gradient as last row "
+        "(zero where the leg lines are linearly dependent and the platform gains a motion "
+        "with the actuators locked)")]
 
 
 def plan(d: Derivation, algebra: Algebra) -> Derivation:
@@ -244,7 +269,23 @@ def specify(d: Derivation) -> Derivation:
     if stray:
         raise MechanismDefinitionError(mech.name, f"singularity_notes name {stray}, which are "
                                                   f"not derived (derived: {sorted(known)})")
-    return replace(d, limits=limits, pose_functions=pose_functions, functions=functions)
+    d = replace(d, limits=limits, pose_functions=pose_functions, functions=functions)
+    return physical_branch(d)
+
+
+def physical_branch(d: Derivation) -> Derivation:
+    """Mode 0 as the declared physical branch (:mod:`..kinematics.branches`): negated
+    generators where needed, and the matching rows of Ji and Jo."""
+    mech = d.mechanism
+    values = {p.symbol: p.value for p in mech.parameters} | d.constants
+    steps, branches = orient(mech.name, d.steps, d.pose_to_study, mech.pose.coordinates,
+                             mech.home, mech.home_joints, values)
+    flipped = {b.joint for b in branches if b.negated}
+    velocity = tuple(
+        replace(v, ji=negate_rows(v.ji, rows), jo=negate_rows(v.jo, rows))
+        for v in d.velocity
+        for rows in [[i for i, q in enumerate(v.joints) if q in flipped]])
+    return replace(d, steps=steps, velocity=velocity, branches=branches)
 
 
 # ------------------------------------------------------------------ generate, import
@@ -266,6 +307,10 @@ def import_generated(gm: GeneratedModule) -> GeneratedModule:
 def run_studies(d: Derivation, gm: GeneratedModule) -> dict[str, Study]:
     """Each study module named by the declaration, run on the generated module."""
     out = {}
+    if d.mechanism.home and getattr(gm.module, "LINKS", ()):
+        from ..studies import configurations
+
+        out["configurations"] = configurations.run(d, gm.module)
     for ref in d.mechanism.studies:
         study = importlib.import_module(ref).run(d, gm.module)
         if not isinstance(study, Study):

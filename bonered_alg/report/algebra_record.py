@@ -56,6 +56,10 @@ def algebra_json(d) -> str:
                       for v in d.velocity],
         "singularities": [{"name": s.name, "constant": str(s.constant),
                            "factors": [[_text(f), int(k)] for f, k in s.factors]}
+                          if not s.is_determinant else
+                          {"name": s.name, "determinant_of": [
+                              [_text(e) for e in s.expression.row(i)]
+                              for i in range(s.expression.rows)]}
                           for s in d.singularities],
     }
     return json.dumps(record, indent=1, sort_keys=True) + "\n"

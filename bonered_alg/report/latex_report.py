@@ -22,6 +22,8 @@ PREAMBLE = r"""\documentclass[10pt,a4paper]{article}
 \allowdisplaybreaks
 \setlength{\parindent}{0pt}
 \setlength{\parskip}{4pt}
+% the math bullet: \textbullet comes from TS1, a Type 3 bitmap font without cm-super
+\renewcommand{\labelitemi}{$\bullet$}
 """
 
 VERDICT_TEX = {"confirmed-symbolic": "confirmed (symbolic)", "confirmed-numeric":
@@ -31,6 +33,52 @@ VERDICT_TEX = {"confirmed-symbolic": "confirmed (symbolic)", "confirmed-numeric"
 
 def _study(point) -> str:
     return "[" + ":".join(latex(c) for c in point) + "]"
+
+
+def _section_overview(record) -> list[str]:
+    """The first page: what the mechanism is, where it comes from, its mobility and modes,
+    where the printed equations stand, and what the report contains."""
+    from collections import Counter
+
+    d, gm = record.derivation, record.generated
+    m = d.mechanism
+    counts = mobility_counts(m.closures)
+    fk_modes = getattr(gm.module, "FK_MODES", 0) if gm.module is not None else 0
+    verdicts = Counter(v.verdict for v in record.verification)
+    errata = [v.ref for v in record.verification if v.verdict == "erratum"]
+    legs = sum(len(c.legs) for c in m.closures)
+    rows = [
+        ("mechanism", tex_escape(m.title)),
+        ("source", tex_escape(m.source)),
+        ("closures, legs", f"{len(m.closures)} closure{'s' if len(m.closures) > 1 else ''} ("
+         + ", ".join(tex_escape(c.name) for c in m.closures) + f"), {legs} legs"),
+        ("actuated joints", ", ".join(f"${latex(q)}$" for q in m.joints)),
+        ("pose", ", ".join(f"${latex(c)}$ [{tex_escape(u)}]"
+                           for c, u in zip(m.pose.coordinates, m.pose.units))),
+        ("mobility", f"$M = {sum(c.mobility for c in counts)}$ (Kutzbach--Gr\\\"ubler, "
+         "per closure in Sect.~1)"),
+        ("working modes (IK)", f"{d.modes}"),
+        ("assembly modes (FK)", str(fk_modes) if fk_modes else
+         "not generated: " + tex_escape(d.fk_note)),
+        ("singularity polynomials", ", ".join(
+            f"{tex_escape(s.name)} ({singularity_class(s.name)[0]})"
+            for s in d.singularities) or "none"),
+        ("printed results", ", ".join(f"{n} {VERDICT_TEX[k]}" for k, n in sorted(
+            verdicts.items())) + (("; errata: " + tex_escape(", ".join(errata))) if errata
+                                  else "")),
+    ]
+    out = [r"\section*{Overview}", r"\begin{longtable}{p{0.22\textwidth}p{0.72\textwidth}}"
+           r"\toprule"]
+    out += [f"{k} & {v}\\\\" for k, v in rows]
+    out.append(r"\bottomrule\end{longtable}")
+    drawing = record.studies.get("configurations")
+    if drawing is not None:
+        png = next(f for f in drawing.files if f.endswith(".png"))
+        out.append(r"\begin{center}\includegraphics[width=0.95\textwidth]{" + png
+                   + r"}\end{center}")
+        out.append(r"{\small The mechanism at home and on a singularity locus, drawn from the "
+                   r"generated functions (Sect.~\ref{sec:configurations}).}")
+    return out
 
 
 def _section_mechanism(d) -> list[str]:
@@ -251,6 +299,7 @@ def _section_ik(d) -> list[str]:
            f"Number of working modes: {d.modes}. The platform's Study coordinates in the "
            "pose coordinates (" + tex_escape(d.mechanism.pose.description) + "):"]
     out += _pose_map(d)
+    out += _mode_table(d)
     for s in d.steps:
         out.append(rf"\paragraph{{Joint ${latex(s.joint)}$}} from {tex_escape(s.source)}, "
                    f"degree {s.degree}:")
@@ -259,6 +308,35 @@ def _section_ik(d) -> list[str]:
         out.append(_polynomial("B", s.B, d))
         out.append(_polynomial("C", s.C, d))
     return out
+
+
+def _mode_table(d) -> list[str]:
+    """The working-mode bits: which root of which joint's step each bit selects, and which
+    root mode 0 is at the home pose (the declared physical branch)."""
+    m = d.mechanism
+    branch = {b.joint: b for b in d.branches}
+    rows, bit = [], 0
+    for st in d.steps:
+        if st.degree != 2:
+            rows.append(f"${latex(st.joint)}$ & linear & -- & one root\\\\")
+            continue
+        b = branch.get(st.joint)
+        if b is None:
+            home = "not declared: the $+$ root of the generator as eliminated"
+        else:
+            home = (f"${b.mode0:.6g}$ (declared ${b.declared:g}$; the other root "
+                    f"${b.roots[0] if b.negated else b.roots[1]:.6g}$"
+                    + ("; generator negated" if b.negated else "") + ")")
+        rows.append(f"${latex(st.joint)}$ & quadratic & {bit} & {home}\\\\")
+        bit += 1
+    where = ("at the home pose $(" + ", ".join(f"{v:g}" for v in m.home) + ")$ in ("
+             + ", ".join(f"${latex(c)}$" for c in m.pose.coordinates) + ")"
+             if m.home else "(no home pose declared)")
+    return [f"Working modes: mode $m$ takes the $-$ root of a step when its bit is set in "
+            f"$m$; mode 0 is the physical branch the mechanism declares {where}.",
+            r"\begin{longtable}{llcp{0.55\textwidth}}\toprule",
+            r"joint & step & mode bit & mode 0 at home\\\midrule", *rows,
+            r"\bottomrule\end{longtable}"]
 
 
 def _section_fk(d) -> list[str]:
@@ -398,7 +476,18 @@ def _section_velocity(d) -> list[str]:
         for name, mat in (("J_i", v.ji), ("J_o", v.jo)):
             out += _jacobian(name, mat, d)
     out.append(r"\subsection{Singularity polynomials}")
+    out += _singularity_table(d)
     for s in d.singularities:
+        if s.is_determinant:
+            out.append(rf"\paragraph{{{tex_escape(s.name)}}} {tex_escape(s.meaning)}. "
+                       f"A polynomial of high degree, not expanded: the generated code "
+                       f"evaluates the {s.expression.rows}$\\times${s.expression.cols} "
+                       r"matrix $J_o$ of this closure (above) with the gradient of the Study "
+                       r"quadric $S$ appended as its last row, and its determinant "
+                       "numerically:")
+            last = s.expression[s.expression.rows - 1, :]
+            out.append(matrix_math(r"\partial S/\partial y", last))
+            continue
         loci, never = _classified_factors(d, s)
         out.append(rf"\paragraph{{{tex_escape(s.name)}}} {tex_escape(s.meaning)}. ")
         if never:
@@ -416,6 +505,41 @@ def _section_velocity(d) -> list[str]:
         notes = d.mechanism.singularity_notes
         if s.name in notes:
             out.append(tex_escape(notes[s.name]))
+    return out
+
+
+SINGULARITY_CLASSES = (  # name prefix -> (class, what a reviewer should read it as)
+    ("det_Ji", "input (type I)", "a joint rate does not move the platform: an actuator "
+                                 "direction is lost"),
+    ("boundary", "boundary", "two working modes of a leg merge: the edge of its reach, "
+                             "also an input singularity"),
+    ("det_Jo", "output (type II)", "the platform moves with the actuators locked"),
+    ("det_forward", "forward (type II)", "two assembly modes merge: the platform moves with "
+                                         "the actuators locked"),
+)
+
+
+def singularity_class(name: str) -> tuple[str, str]:
+    """The class of a singularity polynomial by the name the pipeline gives it."""
+    for prefix, cls, meaning in SINGULARITY_CLASSES:
+        if name.startswith(prefix):
+            return cls, meaning
+    return "other", ""
+
+
+def _singularity_table(d) -> list[str]:
+    """One row per singularity polynomial: its class, the factors that define its locus."""
+    out = [r"\begin{longtable}{lllp{0.42\textwidth}}\toprule",
+           r"polynomial & class & locus factors & meaning\\\midrule"]
+    for s in d.singularities:
+        cls, meaning = singularity_class(s.name)
+        if s.is_determinant:
+            count = f"det of {s.expression.rows}$\\times${s.expression.cols}"
+        else:
+            loci, _ = _classified_factors(d, s)
+            count = str(len(loci)) if loci else "none (never singular)"
+        out.append(f"{tex_escape(s.name)} & {cls} & {count} & {tex_escape(meaning)}\\\\")
+    out.append(r"\bottomrule\end{longtable}")
     return out
 
 
@@ -549,6 +673,7 @@ def render_report(record) -> str:
             f"Derivation hash: \\texttt{{{d.derivation_hash}}}. Generated module: "
             f"\\texttt{{generated/{tex_escape(m.name)}.py}} ({gm.total_operations} operations "
             f"after common-subexpression elimination, {ik_ops} of them in the IK steps).", ""]
+    body += _section_overview(record)
     for part in (_section_mechanism, _section_chains, _section_elimination, _section_ik,
                  _section_fk, _section_velocity, _section_passive):
         body += part(d)

@@ -12,10 +12,12 @@ import re
 
 import sympy as sp
 
-_ESC = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#",
-        "_": r"\_\allowbreak{}", "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}",
-        "^": r"\textasciicircum{}", "|": r"\textbar{}", "<": r"\textless{}",
-        ">": r"\textgreater{}", "/": r"/\allowbreak{}"}
+# ^ and ~ as accents, |, <, > and \ as math symbols: the text commands take them from the
+# TS1 encoding, which pdflatex without cm-super embeds as a Type 3 bitmap font
+_ESC = {"\\": r"$\backslash$", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#",
+        "_": r"\_\allowbreak{}", "{": r"\{", "}": r"\}", "~": r"\~{}",
+        "^": r"\^{}", "|": r"$|$", "<": r"$<$", ">": r"$>$",
+        "/": r"/\allowbreak{}"}
 
 # math on an A4 page with 2 cm margins (483 pt) at 10 pt: about 90 glyphs of 5.3 pt; lines
 # of an align* block start after "lhs &=" or "&\quad"

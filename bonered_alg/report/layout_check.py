@@ -1,6 +1,6 @@
 """The layout targets of a compiled report, read from its pdflatex log: no box wider than the
-page by more than :data:`MAX_OVERFULL_PT`, at most :data:`MAX_PAGES` pages (``make report``
-and ``tests/test_report_compiles.py`` fail on worse).
+page by more than :data:`MAX_OVERFULL_PT`, at most :data:`MAX_PAGES` pages, no bitmap
+(Type 3) font (``make report`` and ``tests/test_report_compiles.py`` fail on worse).
 
     python -m bonered_alg.report.layout_check derivations/*.log
 """
@@ -16,6 +16,8 @@ MAX_PAGES = 40
 
 _OVERFULL = re.compile(r"Overfull \\hbox \(([\d.]+)pt too wide\) (.*)")
 _PAGES = re.compile(r"Output written on .*? \((\d+) pages?")
+# a bitmap font embedded by pdflatex (it becomes a Type 3 font in the PDF): <.../name.600pk>
+_BITMAP = re.compile(r"([A-Za-z0-9_-]+)\.\d+pk>")
 
 
 def layout_problems(log: str, name: str = "report") -> list[str]:
@@ -27,6 +29,9 @@ def layout_problems(log: str, name: str = "report") -> list[str]:
         problems.append(f"{name}: the log names no output file (did it compile?)")
     elif int(m.group(1)) > MAX_PAGES:
         problems.append(f"{name}: {m.group(1)} pages, more than {MAX_PAGES}")
+    problems += [f"{name}: bitmap (Type 3) font {font}: a glyph of an encoding without "
+                 "Type 1 fonts here (TS1 text symbols: write them as math)"
+                 for font in sorted(set(_BITMAP.findall(log.replace("\n", ""))))]
     return problems
 
 

@@ -16,6 +16,7 @@ from .status import (
     INVALID_INPUT,
     JOINT_AT_INFINITY,
     NO_REAL_SOLUTION,
+    NOT_SOLVED,
     OK,
     ON_BOUNDARY,
     OUTSIDE_CHART,
@@ -27,7 +28,7 @@ from .status import (
 
 # the contract between the code generator and this runtime; a generated module states the
 # version it was written for, and importing it with another runtime fails clearly
-API_VERSION = 1
+API_VERSION = 2
 
 
 def require(version: int, mechanism: str) -> None:
@@ -38,6 +39,7 @@ def require(version: int, mechanism: str) -> None:
 
 
 __all__ = ["API_VERSION", "FORWARD_SINGULAR", "INPUT_SINGULAR", "INVALID_INPUT",
-           "JOINT_AT_INFINITY", "NO_REAL_SOLUTION", "OK", "ON_BOUNDARY", "OUTSIDE_CHART",
+           "JOINT_AT_INFINITY", "NO_REAL_SOLUTION", "NOT_SOLVED", "OK", "ON_BOUNDARY",
+           "OUTSIDE_CHART",
            "PASSIVE_JOINT_LIMIT", "STATUS", "STROKE_LIMIT", "ForwardKinematics", "Model",
            "RPSKernels", "UNVERIFIED", "require"]

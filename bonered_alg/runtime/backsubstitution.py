@@ -15,17 +15,24 @@ from .status import (
     INVALID_INPUT,
     JOINT_AT_INFINITY,
     NO_REAL_SOLUTION,
+    NOT_SOLVED,
     OK,
     ON_BOUNDARY,
 )
 
 
-def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False):
+def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False,
+                   per_step=None):
     """Solve ``steps`` in order (linear or quadratic in one unknown each); NaN on failure.
 
     ``inputs`` has shape (..., n_in); the result has shape (..., n_out) with unknown k at
     ``indices[k]``, all NaN where any step fails; status codes are computed on request.
     Quadratic roots are taken in the form that never subtracts nearly equal numbers.
+
+    ``per_step``, a dict, receives ``codes`` (..., len(steps)): each step's own status
+    (NOT_SOLVED where its coefficients use an unknown an earlier step failed to give: a
+    polynomial of finite numbers is never NaN), ``discriminants`` (one array per step,
+    None for a linear step) and ``roots`` (each step's root before the all-or-nothing rule).
     """
     shape = inputs.shape[:-1]
     cols = [inputs[..., i] for i in range(inputs.shape[-1])]
@@ -35,14 +42,19 @@ def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False):
         status[~numpy.all(numpy.isfinite(inputs), axis=-1)] = INVALID_INPUT
     solved = []
     failed = numpy.zeros(shape, dtype=bool)
+    codes, discs = [], []
     with numpy.errstate(all="ignore"):
         for (degree, kern, bit), index in zip(steps, indices):
             a, b, c = kern(*cols, *solved, *par)
+            if per_step is not None:
+                nan_in = numpy.isnan(b) | numpy.isnan(c) | (numpy.isnan(a) if degree == 2
+                                                            else False)
             if degree == 1:
                 root = numpy.asarray(-c / b, dtype=float)
                 bad = ~numpy.isfinite(root)
                 no_real = None
                 pivot_zero = bad & (b == 0)  # det Ji = 0 exactly: an input singularity
+                disc = None
             else:
                 sign = -1.0 if (mode >> bit) & 1 else 1.0
                 bb = b * b
@@ -64,9 +76,17 @@ def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False):
                 # the first failure wins; a failure overrides an earlier ON_BOUNDARY
                 replace = (status == OK) | ((status == ON_BOUNDARY) & bad)
                 status = numpy.where(replace, new, status).astype(numpy.int8)
+                if per_step is not None:
+                    codes.append(numpy.where(nan_in, NOT_SOLVED, new).astype(numpy.int8))
+                    discs.append(disc)
             out[..., index] = root
             solved.append(root)
             failed |= bad
+    if per_step is not None:
+        per_step["codes"] = (numpy.stack(codes, axis=-1) if codes
+                             else numpy.zeros(shape + (0,), dtype=numpy.int8))
+        per_step["discriminants"] = discs
+        per_step["roots"] = out.copy()
     # a configuration is reachable as a whole or not at all: the status says which leg failed
     out[failed] = numpy.nan
     return out, status

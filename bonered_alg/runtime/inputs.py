@@ -5,8 +5,29 @@ from __future__ import annotations
 import numpy
 
 
+def _numeric(model, func: str, value, what: str) -> numpy.ndarray:
+    """``value`` as a float array; strings, objects, complex numbers and booleans are a
+    TypeError naming the mechanism, the function and the argument."""
+    try:
+        raw = numpy.asarray(value)
+    except (TypeError, ValueError) as exc:  # ragged nested sequences
+        raise TypeError(f"{model.mechanism}.{func}: {what} must be a real number or an "
+                        f"array of real numbers, got {type(value).__name__} ({exc})") from None
+    if raw.dtype.kind not in "iuf":
+        kind = {"U": "strings", "S": "bytes", "O": "Python objects", "c": "complex numbers",
+                "b": "booleans"}.get(raw.dtype.kind, f"dtype {raw.dtype}")
+        raise TypeError(f"{model.mechanism}.{func}: {what} must be real numbers (float or "
+                        f"int), got an array of {kind}")
+    return raw.astype(float, copy=False)
+
+
+DOMAIN_TEST = {"positive": (lambda v: v > 0, "> 0"),
+               "nonnegative": (lambda v: v >= 0, ">= 0")}
+
+
 def parameters(model, func: str, params: dict) -> list:
-    """The geometric parameters in ``model.parameters`` order, keywords overriding defaults."""
+    """The geometric parameters in ``model.parameters`` order, keywords overriding defaults;
+    each finite and within its domain (``model.parameter_domains``: a length is > 0)."""
     unknown = sorted(set(params) - set(model.parameters))
     if unknown:
         raise TypeError(f"{model.mechanism}.{func}: unknown geometric parameter(s) {unknown}; "
@@ -19,17 +40,25 @@ def parameters(model, func: str, params: dict) -> list:
                 f"{model.mechanism}.{func}: geometric parameter {name!r} has no value "
                 f"({model.parameter_notes[name]}); pass {name}=<value in "
                 f"{model.parameter_units[name]}>")
-        value = numpy.asarray(value, dtype=float)
+        value = _numeric(model, func, value, f"geometric parameter {name!r}")
         if not numpy.all(numpy.isfinite(value)):
             raise ValueError(f"{model.mechanism}.{func}: geometric parameter {name!r} is not "
                              "finite")
+        domain = (model.parameter_domains or {}).get(name, "real")
+        if domain in DOMAIN_TEST:
+            test, text = DOMAIN_TEST[domain]
+            if not numpy.all(test(value)):
+                raise ValueError(f"{model.mechanism}.{func}: geometric parameter {name!r} "
+                                 f"must be {text} ({model.parameter_notes[name]}), got "
+                                 f"{value if value.ndim == 0 else value[~test(value)][:3]}"
+                                 f" {model.parameter_units[name]}")
         out.append(value)
     return out
 
 
 def coordinates(model, func: str, values, names, what: str) -> numpy.ndarray:
     """``values`` as a float array of shape (..., len(names))."""
-    p = numpy.asarray(values, dtype=float)
+    p = _numeric(model, func, values, what)
     if p.ndim == 0 or p.shape[-1] != len(names):
         raise ValueError(f"{model.mechanism}.{func}: {what} must have shape (..., {len(names)}) "
                          f"with coordinates {tuple(names)}, got shape {p.shape}")
@@ -47,10 +76,20 @@ def joints(model, func: str, q, shape) -> numpy.ndarray:
 
 def mode(model, func: str, value, count: int | None = None, table: str = "MODE_BITS") -> int:
     count = model.modes if count is None else count
-    if not isinstance(value, (int, numpy.integer)) or not 0 <= int(value) < count:
+    if (not isinstance(value, (int, numpy.integer)) or isinstance(value, bool)
+            or not 0 <= int(value) < count):
         raise ValueError(f"{model.mechanism}.{func}: mode must be an integer in [0, {count}), "
                          f"got {value!r}; see {table}")
     return int(value)
+
+
+def flag(model, func: str, name: str, value) -> bool:
+    """A boolean keyword (``limits``): True or False only, so that ``limits='no'`` is an
+    error rather than true."""
+    if not isinstance(value, (bool, numpy.bool_)):
+        raise TypeError(f"{model.mechanism}.{func}: {name} must be True or False, got "
+                        f"{value!r}")
+    return bool(value)
 
 
 def columns(a: numpy.ndarray) -> list:

@@ -20,6 +20,9 @@ from .status import (
     DET_RTOL,
     INPUT_SINGULAR,
     INVALID_INPUT,
+    JOINT_AT_INFINITY,
+    NO_REAL_SOLUTION,
+    NOT_SOLVED,
     OK,
     ON_BOUNDARY,
     PASSIVE_JOINT_LIMIT,
@@ -90,6 +93,12 @@ class Model:
     links: tuple = ()  # ((kernel, first link index, count), ...)
     link_names: tuple[str, ...] = ()
     fk: ForwardKinematics = field(default_factory=ForwardKinematics)
+    parameter_domains: Mapping[str, str] = field(default_factory=dict)
+    # index in ``steps`` of each linear step whose pivot the ``pivots`` kernel returns
+    pivot_steps: tuple[int, ...] = ()
+    # singularities that are the determinant of a matrix: name -> (kernel of its n*n
+    # entries, row-major, in the Study coordinates and joints; n)
+    singularity_matrices: Mapping[str, tuple] = field(default_factory=dict)
 
     # ------------------------------------------------------------ inverse kinematics
     def solve(self, pose, mode, par, with_status=False, limits=True):
@@ -149,27 +158,135 @@ class Model:
                 numpy.int8)
         return q, status
 
+    def _ik_args(self, func, pose, mode, limits, params):
+        """The checked arguments of an IK function, all before any work."""
+        return (check.pose(self, func, pose), check.mode(self, func, mode),
+                check.parameters(self, func, params or {}), check.flag(self, func, "limits",
+                                                                       limits))
+
     def ik(self, pose, mode=0, limits=True, params=None):
-        q, _ = self.solve(check.pose(self, "ik", pose), check.mode(self, "ik", mode),
-                          check.parameters(self, "ik", params or {}), False, limits)
-        return q
+        pose, mode, par, limits = self._ik_args("ik", pose, mode, limits, params)
+        return self.solve(pose, mode, par, False, limits)[0]
 
     def ik_status(self, pose, mode=0, limits=True, params=None):
-        _, status = self.solve(check.pose(self, "ik_status", pose),
-                               check.mode(self, "ik_status", mode),
-                               check.parameters(self, "ik_status", params or {}), True, limits)
-        return status
+        pose, mode, par, limits = self._ik_args("ik_status", pose, mode, limits, params)
+        return self.solve(pose, mode, par, True, limits)[1]
 
     def ik_and_status(self, pose, mode=0, limits=True, params=None):
-        return self.solve(check.pose(self, "ik_and_status", pose),
-                          check.mode(self, "ik_and_status", mode),
-                          check.parameters(self, "ik_and_status", params or {}), True, limits)
+        pose, mode, par, limits = self._ik_args("ik_and_status", pose, mode, limits, params)
+        return self.solve(pose, mode, par, True, limits)
 
     def ik_all(self, pose, limits=True, params=None):
-        pose = check.pose(self, "ik_all", pose)
-        par = check.parameters(self, "ik_all", params or {})
+        pose, _, par, limits = self._ik_args("ik_all", pose, 0, limits, params)
         return numpy.stack([self.solve(pose, m, par, False, limits)[0]
                             for m in range(self.modes)], axis=-2)
+
+    # ------------------------------------------------------------ why a pose fails
+    def _joint_report(self, pose, mode, par, limits):
+        """Each joint's own status (``ik_joint_status``) and the numbers behind it: the
+        per-step record of the back-substitution, the pivots, the limit values."""
+        shape = pose.shape[:-1]
+        n = len(self.joints)
+        with numpy.errstate(all="ignore"):
+            study = stacked(self.study(*columns(pose), *par), shape)
+        info: dict = {}
+        backsubstitute(study, self.steps, self.solve_index, n, mode, par, True, info)
+        roots = info["roots"]  # every step's own root, before the all-or-nothing rule
+        codes = numpy.zeros(shape + (n,), dtype=numpy.int8)
+        for k, j in enumerate(self.solve_index):
+            codes[..., j] = info["codes"][..., k]
+        if self.pivots is not None:
+            with numpy.errstate(all="ignore"):
+                values = self.pivots(*columns(study), *columns(roots), *par)
+            half = len(values) // 2
+            for k, d, sc in zip(self.pivot_steps, values[:half], values[half:]):
+                j = self.solve_index[k]
+                singular = numpy.abs(d) <= DET_RTOL * numpy.abs(sc)
+                codes[..., j] = numpy.where(singular & (codes[..., j] == OK), INPUT_SINGULAR,
+                                            codes[..., j])
+        lims = {}
+        if limits and self.limits:
+            with numpy.errstate(all="ignore"):
+                values = self.limit_kernel(*columns(pose), *columns(roots), *par)
+            for v, lim in zip(values, self.limits):
+                v = numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+                lims[lim[0]] = v
+                bad = (v < lim[1]) | (v > lim[2])
+                free = (codes == OK) | (codes == ON_BOUNDARY)
+                if lim[0] in self.joints:
+                    j = self.joints.index(lim[0])
+                    codes[..., j] = numpy.where(bad & free[..., j], STROKE_LIMIT, codes[..., j])
+                else:  # a limit of no actuated joint rejects the configuration as a whole
+                    code = STROKE_LIMIT if lim[3] == "stroke" else PASSIVE_JOINT_LIMIT
+                    codes = numpy.where(bad[..., None] & free, code, codes).astype(numpy.int8)
+        codes[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
+        return codes, info, roots, lims
+
+    def ik_joint_status(self, pose, mode=0, limits=True, params=None):
+        """Status per joint (..., len(JOINTS)): the code of the step that solves it, of its
+        own stroke limit, NOT_SOLVED where its step uses a joint that failed, and the code of
+        a violated limit of no actuated joint (a passive angle) on every joint that has no
+        failure of its own.  ``ik`` returns a configuration as a whole or not at all."""
+        pose, mode, par, limits = self._ik_args("ik_joint_status", pose, mode, limits, params)
+        return self._joint_report(pose, mode, par, limits)[0]
+
+    def ik_explain(self, pose, mode=0, limits=True, params=None):
+        """Why ``ik`` returns NaN (or warns) at each pose, in words: a str for one pose,
+        an object array of str of shape pose.shape[:-1] for many."""
+        pose, mode, par, limits = self._ik_args("ik_explain", pose, mode, limits, params)
+        codes, info, roots, lims = self._joint_report(pose, mode, par, limits)
+        shape = pose.shape[:-1]
+        order = list(self.solve_index)
+        out = numpy.empty(shape, dtype=object)
+        for idx in numpy.ndindex(*shape):
+            out[idx] = self._explain_one(pose[idx], codes[idx], info, roots[idx], lims, idx,
+                                         order)
+        return out[()] if not shape else out
+
+    def _explain_one(self, pose, codes, info, roots, lims, idx, order):
+        if not numpy.all(numpy.isfinite(pose)):
+            bad = [p for p, v in zip(self.pose, pose) if not numpy.isfinite(v)]
+            return f"pose coordinate(s) {', '.join(bad)} not finite"
+        failed = [self.joints[j] for j in order if codes[j] not in (OK, ON_BOUNDARY,
+                                                                     STROKE_LIMIT)]
+        lines = []
+        for j in order:
+            q, c = self.joints[j], int(codes[j])
+            k = order.index(j)
+            disc = info["discriminants"][k]
+            if c == NO_REAL_SOLUTION:
+                lines.append(f"{q}: no real root (the discriminant of its quadratic step is "
+                             f"{float(disc[idx]):.4g} < 0): the pose is out of the reach of "
+                             f"the leg that drives {q}")
+            elif c == JOINT_AT_INFINITY:
+                lines.append(f"{q}: its step has no finite root (a vanishing leading "
+                             "coefficient or an overflow: the joint parameter is at infinity, "
+                             "e.g. a tan-half-angle at a half-turn)")
+            elif c == INPUT_SINGULAR:
+                lines.append(f"{q}: input singularity (the pivot dG/d{q} of its linear step "
+                             f"vanishes: {q} is undetermined)")
+            elif c == NOT_SOLVED:
+                before = [p for p in failed if order.index(self.joints.index(p)) < k]
+                lines.append(f"{q}: not solved (its step uses {', '.join(before)}, which "
+                             "failed)")
+            elif c == ON_BOUNDARY:
+                lines.append(f"{q}: double root (on the boundary of its leg's reach: the "
+                             "value is valid, the Jacobian is not)")
+        for name, lower, upper, kind, unit, source in self.limits:
+            if name not in lims or not numpy.isfinite(lims[name][idx]):
+                continue
+            v = float(lims[name][idx])
+            if lower <= v <= upper:
+                continue
+            side, bound = ("below its lower", lower) if v < lower else ("above its upper",
+                                                                         upper)
+            lines.append(f"{name} = {v:.6g} {unit} {side} limit {bound:.6g} {unit} ({kind} "
+                         f"limit, {source})")
+        if not lines:
+            return "ok"
+        ok = all(int(c) in (OK, ON_BOUNDARY) for c in codes) and not any(
+            "limit" in ln for ln in lines)
+        return ("ok; " if ok else "") + "; ".join(lines)
 
     def limit_values(self, pose, q, params=None):
         pose = check.pose(self, "limit_values", pose)
@@ -220,8 +337,7 @@ class Model:
         """``dq/dX`` by forward substitution (Ji is triangular in the solve order) and the
         status: an IK status, or INPUT_SINGULAR where a pivot vanishes or a quadratic step
         has a double root."""
-        pose, mode = check.pose(self, func, pose), check.mode(self, func, mode)
-        par = check.parameters(self, func, params or {})
+        pose, mode, par, limits = self._ik_args(func, pose, mode, limits, params)
         q, status = self.solve(pose, mode, par, True, limits)
         shape = pose.shape[:-1]
         n, m = len(self.joints), len(self.pose)
@@ -246,9 +362,15 @@ class Model:
         with numpy.errstate(all="ignore"):
             study = self.study(*columns(pose), *par)
             qc = columns(q)
-            return {name: numpy.broadcast_to(numpy.asarray(kern(*study, *qc, *par)[0],
-                                                           dtype=float), shape)
-                    for name, kern in self.singularity_kernels.items()}
+            out = {name: numpy.broadcast_to(numpy.asarray(kern(*study, *qc, *par)[0],
+                                                          dtype=float), shape)
+                   for name, kern in self.singularity_kernels.items()}
+            for name, (kern, n) in self.singularity_matrices.items():
+                mat = stacked(kern(*study, *qc, *par), shape).reshape(shape + (n, n))
+                ok = numpy.all(numpy.isfinite(mat), axis=(-2, -1))
+                det = numpy.linalg.det(numpy.where(ok[..., None, None], mat, 0.0))
+                out[name] = numpy.where(ok, det, numpy.nan)
+            return out
 
     # ------------------------------------------------------------ passive joints, twist
     def _passive(self, pose, mode, par):

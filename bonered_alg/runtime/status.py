@@ -17,6 +17,7 @@ PASSIVE_JOINT_LIMIT = 7
 FORWARD_SINGULAR = 8
 OUTSIDE_CHART = 9
 UNVERIFIED = 10
+NOT_SOLVED = 11
 
 STATUS = {
     OK: "ok",
@@ -39,6 +40,8 @@ STATUS = {
                 "the closure equations did not vanish): a step of the solver divided by a "
                 "pivot near zero, which is not a singularity of the mechanism; no pose is "
                 "returned",
+    NOT_SOLVED: "not solved: the step that solves this joint uses another joint that has "
+                "no valid value (its own status says why); per-joint status only",
 }
 
 # relative tolerances of the tests above (discriminant against B^2, pivot against its row)

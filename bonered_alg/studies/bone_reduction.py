@@ -381,20 +381,24 @@ SING_SLICES_001 = {  # 2-D slices for the plots
 
 
 def singularities_001(workers: int | None = None) -> tuple[list[dict], dict]:
-    """For ``tripod_planar``: per grid of ``SING_GRIDS_001``, the reachable samples and, per
-    singularity polynomial, the reachable neighbour pairs it separates (``singular_loci``),
-    the home component (the homing pose's, :mod:`..workspace.components`) and the loci it
-    reaches; and the 2-D slices (scan, signs) for the plots."""
+    """For ``tripod_planar`` and, for the comparison, ``stewart`` (its forward singularity
+    ``det_forward_P`` among its polynomials): per grid of ``SING_GRIDS_001``, the reachable
+    samples and, per singularity polynomial, the reachable neighbour pairs it separates
+    (``singular_loci``), the home component (the homing pose's,
+    :mod:`..workspace.components`) and the loci it reaches; and the 2-D slices (scan,
+    signs) for the plots."""
     from ..workspace.singular_loci import crossings, polynomial_signs, signs_on_reachable
 
     module = load_module("tripod_planar")
     home_pose = dict(zip(module.POSE, (*HOMING, 0.0, 0.0, 0.0)))
     rows = []
-    for name, (axes, fixed) in SING_GRIDS_001.items():
-        res = scan("tripod_planar", user_grid(module.POSE, axes, fixed), workers=workers)
+    for mech, (name, (axes, fixed)) in ((m, g) for m in ("tripod_planar", "stewart")
+                                        for g in SING_GRIDS_001.items()):
+        res = scan(mech, user_grid(module.POSE, axes, fixed), workers=workers)
         signs = polynomial_signs(res)
         home = home_component(res, signs, {a.name: home_pose[a.name] for a in res.grid.axes})
-        rows.append({"grid": name, "description": res.grid.describe(), "samples": res.samples,
+        rows.append({"mechanism": mech, "grid": name, "description": res.grid.describe(),
+                     "samples": res.samples,
                      "reachable": res.count, "crossing_pairs": crossings(res, signs),
                      "signs_on_reachable": signs_on_reachable(res, signs),
                      "home_component": {"samples": home.count,

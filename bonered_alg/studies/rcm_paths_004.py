@@ -37,7 +37,7 @@ def table5(gen) -> list[dict]:
         if axis is None:
             pose = np.asarray(TABLE5_ENTRY)
         else:
-            pose = tool.rcm_path(TABLE5_ENTRY, axis, [angle], TABLE5_DEPTH)[0]
+            pose = tool.rcm_path(TABLE5_ENTRY, axis, [np.radians(angle)], TABLE5_DEPTH)[0]
         joints, status = tool.tool_ik(pose, gen, mode=TABLE5_MODE, limits=False)
         model = [float(v) for v in joints]
         diff = [m - p for m, p in zip(model, printed)]
@@ -55,7 +55,7 @@ def rcm_deviation(gen) -> dict:
     out = {}
     for name, axis, sign in (("A", "x", -1), ("B", "y", 1)):
         angles = sign * np.arange(0, 35, 5)
-        poses = tool.rcm_path(TABLE5_ENTRY, axis, angles, TABLE5_DEPTH)
+        poses = tool.rcm_path(TABLE5_ENTRY, axis, np.radians(angles), TABLE5_DEPTH)
         ctrl, status = tool.tool_ik(poses, gen, mode=TABLE5_MODE, limits=False)
         s, dev = tool.interpolated_deviation(TABLE5_ENTRY, ctrl, gen, poses[0])
         norm = np.linalg.norm(dev, axis=-1)

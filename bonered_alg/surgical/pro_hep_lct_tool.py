@@ -186,14 +186,18 @@ def tool_fk(joints, gen, **params) -> np.ndarray:
     return np.stack(out, axis=-2)
 
 
-def rcm_path(entry, axis: str, angles_deg, depth: float) -> np.ndarray:
-    """Tool poses of an RCM path (004 eq. 10, 12): rotations by ``angles_deg`` about the tool
+def rcm_path(entry, axis: str, angles, depth: float) -> np.ndarray:
+    """Tool poses of an RCM path (004 eq. 10, 12): rotations by ``angles`` (rad, as
+    everywhere in the API; ``numpy.radians`` converts the paper's degrees) about the tool
     axis ``axis`` ('x' or 'y') of the entry-point pose ``entry``, each followed by an
     insertion of ``depth`` mm towards the patient (along -Z'), shape (len(angles), 8),
     normalized (|x| = 1, x0 >= 0)."""
     from . import manipulation as mp
 
-    u = np.tan(np.radians(np.asarray(angles_deg, dtype=float)) / 2)
+    if axis not in ("x", "y"):
+        raise ValueError(f"pro_hep_lct.rcm_path: axis must be 'x' or 'y' (a tool axis), got "
+                         f"{axis!r}")
+    u = np.tan(np.asarray(angles, dtype=float) / 2)
     return sn.normalize(mp.rcm(np.asarray(entry, dtype=float), u, axis, -float(depth)))
 
 

@@ -123,8 +123,13 @@ def summary_csv(res: ScanResult, statuses: dict[int, str]) -> str:
     w.writerow(["samples", res.samples, ""])
     w.writerow(["reachable", res.count, ""])
     units = [user_unit(a.name) for a in res.grid.axes]
-    w.writerow(["volume", f"{res.volume:.6g}", "*".join(
-        "mm" if a.name not in ANGLES else "rad" for a in res.grid.axes if a.n > 1)])
+    # the volume in the units of the ranges below (mm and degrees), and in mm and radians
+    scanned = [a for a in res.grid.axes if a.n > 1]
+    user_cell = math.prod(user_value(a.name, a.step) for a in scanned)
+    w.writerow(["volume", f"{res.count * user_cell:.6g}",
+                "*".join(user_unit(a.name) for a in scanned)])
+    w.writerow(["volume_mm_rad", f"{res.volume:.6g}", "*".join(
+        "mm" if a.name not in ANGLES else "rad" for a in scanned)])
     for a, unit in zip(res.grid.axes, units):
         lo, hi = res.ranges.get(a.name, (math.nan, math.nan))
         w.writerow([f"{a.name}_min", f"{user_value(a.name, lo):.6g}", unit])

@@ -65,7 +65,9 @@ def overlay(results: Sequence[ScanResult], a: str, b: str, title: str, stem: Pat
             ax.plot([], [], color=colour, label=res.mechanism)
         ax.set_xlabel(f"{LABELS.get(b, b)} ({user_unit(b)})")
         ax.set_ylabel(f"{LABELS.get(a, a)} ({user_unit(a)})")
-        ax.set_title(title, fontsize=9)
+        hidden = sorted({ax_.name for r in results for ax_ in r.grid.axes} - {a, b})
+        ax.set_title(title + ("\nprojection: reachable for some " + ", ".join(hidden)
+                              if hidden else ""), fontsize=9)
         ax.legend(loc="upper right", fontsize=8)
         ax.grid(True, lw=0.3)
         fig.tight_layout()
@@ -81,8 +83,9 @@ def joint_paths(results: dict, stroke_ranges: dict, title: str, stem: Path) -> l
         for ax, (label, r) in zip(np.atleast_1d(axes), results.items()):
             for k in range(r.q.shape[1]):
                 ax.plot(r.t, r.q[:, k], lw=1.0, label=f"q{k + 1}")
-            for lo, hi in stroke_ranges[label]:
-                ax.axhline(lo, color="k", ls="--", lw=0.6)
+            for n, (lo, hi) in enumerate(stroke_ranges[label]):
+                ax.axhline(lo, color="k", ls="--", lw=0.6,
+                           label="stroke range" if n == 0 else None)
                 ax.axhline(hi, color="k", ls="--", lw=0.6)
             bad = r.code != 0
             if bad.any():
