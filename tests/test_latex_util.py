@@ -45,3 +45,16 @@ def test_broken_math_is_an_align_block_with_one_lhs():
     tex = broken_math("g_{1}", EXPRESSIONS[0])
     assert tex.startswith("\\begin{align*}\ng_{1} &= ") and tex.count("&=") == 1
     assert tex.count(r"&\quad") == tex.count("\\\\")
+
+
+def test_prose_typesets_symbols_and_leaves_words():
+    from bonered_alg.report.latex_util import prose
+
+    assert prose("J_A^-1 J_B vs the derivative") == r"$J_{A}^{-1}$ $J_{B}$ vs the derivative"
+    assert prose("rho_k^T omega = 0,") == r"$\rho_{k}^{T}$ $\omega$ $=$ 0,"
+    assert prose("(a11 = rb ca") == r"($a_{11}$ $=$ rb ca"
+    assert prose("q4' of MP1 and x_par") == r"$q_{4}'$ of MP1 and $x_{\mathrm{par}}$"
+    assert prose("mm^2; eq. (17)") == r"$\mathrm{mm}^{2}$; eq. (17)"
+    assert prose("50% & $5") == r"50\% \& \$5"  # text is escaped
+    assert prose("|alpha| < 0.3 in a plane, x") == r"$|\alpha|$ $<$ 0.3 in a plane, $x$"
+    assert prose("the 6 x 6 dq/dX") == r"the 6 $\times$ 6 dq/\allowbreak{}dX"

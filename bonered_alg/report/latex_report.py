@@ -13,7 +13,7 @@ import sympy as sp
 from ..chains.topology import loops, mobility_counts, topology
 from ..kinematics.rps_forward import DEGREE_BOUND, PAIRS
 from .algebra_record import FULL_TERMS, degrees, is_long, terms
-from .latex_util import broken_math, latex, matrix_math, tex_escape, texttt
+from .latex_util import broken_math, latex, matrix_math, prose, tex_escape
 
 PREAMBLE = r"""\documentclass[10pt,a4paper]{article}
 \usepackage[margin=2cm]{geometry}
@@ -637,8 +637,8 @@ def section_verification(verdicts) -> list[str]:
            r"reference & quantity & verdict & detail\\\midrule\endhead"]
     for v in verdicts:
         err = "" if v.max_error is None else f" (max error {v.max_error:.2e})"
-        out.append(f"{tex_escape(v.ref)} & {tex_escape(v.quantity)} & "
-                   f"{VERDICT_TEX[v.verdict]}{err} & {texttt(v.detail)}\\\\")
+        out.append(f"{tex_escape(v.ref)} & {prose(v.quantity)} & "
+                   f"{VERDICT_TEX[v.verdict]}{err} & {prose(v.detail)}\\\\")
     out.append(r"\bottomrule\end{longtable}")
     errata = [v for v in verdicts if v.verdict == "erratum" and v.evidence]
     if errata:

@@ -37,6 +37,63 @@ def texttt(text: str) -> str:
     return r"\texttt{" + out + "}"
 
 
+GREEK = ("alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota",
+         "kappa", "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "phi", "chi",
+         "psi", "omega", "Gamma", "Delta", "Theta", "Lambda", "Phi", "Psi", "Omega")
+# a symbol of plain-text mathematics: a base, a subscript, a superscript, primes
+_SYMBOL = re.compile(r"([A-Za-z]+)(\d*)(?:_([A-Za-z0-9]+))?(?:\^(-?[A-Za-z0-9]+))?('*)")
+_EDGE = re.compile(r"^([(\[|]*)(.*?)([)\],;:.|]*)$")
+_ENGLISH = {"a", "A", "I"}  # one-letter English words: not symbols
+
+
+def _math_part(part: str) -> str:
+    return rf"\{part}" if part in GREEK else (part if len(part) == 1 else
+                                             rf"\mathrm{{{part}}}")
+
+
+def _symbol(token: str) -> str | None:
+    """``token`` as inline math when it is visibly a symbol (``q_k``, ``J_A^-1``, ``a11``,
+    ``rho_k^T``, ``gamma``, ``q4'``), else None (a word stays a word)."""
+    m = _SYMBOL.fullmatch(token)
+    if not m:
+        return None
+    base, digits, sub, sup, primes = m.groups()
+    greek = base in GREEK
+    if not (greek or sub or sup or primes or (digits and len(base) == 1)
+            or (len(base) == 1 and base not in _ENGLISH)):
+        return None  # a word, or a word with digits ("MP1", "B1B2") stays text
+    out = _math_part(base)
+    lower = [x for x in (digits, sub) if x]
+    if lower:
+        out += "_{" + ",".join(_math_part(x) if not x.isdigit() else x for x in lower) + "}"
+    if sup:
+        out += "^{" + (sup if not sup.lstrip("-").isalpha() or len(sup.lstrip("-")) == 1
+                       else "-" * sup.startswith("-") + _math_part(sup.lstrip("-"))) + "}"
+    return "$" + out + "'" * len(primes) + "$"
+
+
+def prose(text: str) -> str:
+    """Plain text with its symbols typeset as mathematics (the verification details):
+    each space-separated token that is visibly a symbol becomes inline math, everything
+    else is escaped text; an ``=`` between symbols becomes the math relation."""
+    words = []
+    tokens = str(text).split(" ")
+    for i, token in enumerate(tokens):
+        if token == "x" and 0 < i < len(tokens) - 1 and tokens[i - 1].isdigit() \
+                and tokens[i + 1].rstrip(",;:.)").isdigit():
+            words.append(r"$\times$")  # 6 x 6
+            continue
+        lead, core, trail = _EDGE.match(token).groups()
+        sym = _symbol(core) if core else None
+        if sym is None and core in ("=", "<", ">", "<=", ">="):
+            sym = "$" + {"<=": r"\le", ">=": r"\ge"}.get(core, core) + "$"
+        if sym is not None and lead.endswith("|") and trail.startswith("|"):
+            sym, lead, trail = "$|" + sym[1:-1] + "|$", lead[:-1], trail[1:]  # |x|
+        words.append(tex_escape(lead) + sym + tex_escape(trail) if sym is not None
+                     else tex_escape(token))
+    return " ".join(words)
+
+
 def latex(expr) -> str:
     return sp.latex(sp.sympify(expr))
 

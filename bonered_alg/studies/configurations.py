@@ -126,8 +126,8 @@ def _draw(ax, d, gen, pose, title):
             ax.plot(line[:, 0], line[:, 1], line[:, 2], "-o", color=c, ms=2.5, lw=1.4)
             tips.setdefault(point, []).append(line[-1])
     for point, pts in tips.items():
-        if len(pts) > 2:
-            p = np.array(pts + [pts[0]])
+        if len(pts) > 1:  # two legs: the link between them; more: the platform polygon
+            p = np.array(pts + [pts[0]] if len(pts) > 2 else pts)
             ax.plot(p[:, 0], p[:, 1], p[:, 2], "--", color=colours[point], lw=1.0)
     handles = [ax.plot([], [], "-o", color=c, ms=2.5, label=f"legs closing on {p}")[0]
                for p, c in colours.items()]
@@ -136,6 +136,14 @@ def _draw(ax, d, gen, pose, title):
     ax.legend(handles=handles, fontsize=6, loc="upper left")
     ax.set(xlabel="x (mm)", ylabel="y (mm)", zlabel="z (mm)", title=title)
     ax.title.set_fontsize(8)
+
+
+def _relative(rel: float) -> str:
+    """|p| at the found point: below MAX_RELATIVE is a zero, printed as the bound (its
+    digits are floating-point noise, which differs between machines); a larger value (a
+    sign change where the IK fails) at two digits."""
+    return f"$<10^{{{round(np.log10(MAX_RELATIVE))}}}$" if rel <= MAX_RELATIVE else \
+        number(rel, ".1e")
 
 
 def _pose_text(gen, pose) -> str:
@@ -182,7 +190,7 @@ def run(d, gen) -> Study:
             pose, axis, rel, note = found
             report.append(f"{tex_escape(name)} & {tex_escape(_pose_text(gen, pose))}"
                           + (f" ({tex_escape(note)})" if note else "")
-                          + f" & {tex_escape(axis)} & {number(rel, '.1e')}\\\\")
+                          + f" & {tex_escape(axis)} & {_relative(rel)}\\\\")
     report.append(r"\bottomrule\end{longtable}")
     return Study("configurations", data={"rows": rows, "drawn": first}, files=files,
                  report=tuple(report))
