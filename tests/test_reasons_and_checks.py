@@ -88,25 +88,31 @@ def test_pro_hep_lct_unreachable_lower_point_names_its_two_joints():
     assert text.startswith("t1: no real root") and "w1: no real root" in text
 
 
+@pytest.mark.parametrize("fast", [False, True], ids=["numpy", "compiled"])
 @pytest.mark.parametrize("name", ["planar_tripod", "pro_hep_lct", "stewart"])
-def test_bad_arguments_are_clear_errors(name):
+def test_bad_arguments_are_clear_errors(name, fast):
+    """The same errors on both paths: the numpy runtime and the compiled fast path."""
     import importlib
 
     m = importlib.import_module(f"bonered_alg.generated.{name}")
     home = np.asarray(m.HOME)
     with pytest.raises(TypeError, match=rf"{name}.ik: pose must be real numbers .* strings"):
-        m.ik(np.array(["1"] * len(m.POSE)))
+        m.ik(np.array(["1"] * len(m.POSE)), fast=fast)
     with pytest.raises(TypeError, match=rf"{name}.ik: limits must be True or False, got 'no'"):
-        m.ik(home, limits="no")
+        m.ik(home, limits="no", fast=fast)
     with pytest.raises(ValueError, match=rf"{name}.jacobian: mode must be an integer"):
-        m.jacobian(home, mode=True)
+        m.jacobian(home, mode=True, fast=fast)
     positive = [p for p, d in m.PARAMETER_DOMAINS.items() if d == "positive"]
     assert positive  # every mechanism here has lengths
     with pytest.raises(ValueError, match=rf"{name}.ik_all: geometric parameter "
                                          rf"'{positive[0]}' must be > 0"):
-        m.ik_all(home, **{positive[0]: -1.0})
+        m.ik_all(home, fast=fast, **{positive[0]: -1.0})
     with pytest.raises(TypeError, match=rf"{name}.ik_status: pose must be real numbers"):
-        m.ik_status([[1 + 2j] * len(m.POSE)])
+        m.ik_status([[1 + 2j] * len(m.POSE)], fast=fast)
+    with pytest.raises(ValueError, match=rf"{name}.ik_and_jacobian: pose must have shape"):
+        m.ik_and_jacobian(home[:-1], fast=fast)
+    with pytest.raises(TypeError, match=rf"{name}.ik: fast must be None, True or False"):
+        m.ik(home, fast="yes")
 
 
 @pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar", "pro_hep_lct", "stewart"])

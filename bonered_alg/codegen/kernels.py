@@ -1,7 +1,9 @@
 """Numpy kernels from sympy expressions, with common subexpressions eliminated.
 
 A kernel is a plain function of scalar-or-array arguments returning a tuple of arrays; it
-contains only arithmetic and ``numpy`` calls, so it broadcasts over any leading shape.
+contains only arithmetic and ``numpy`` calls, so it broadcasts over any leading shape.  The
+kernels of the compiled fast path (:mod:`.c_module`) are printed as C from the same
+common-subexpression program, so both evaluate the same operations in the same order.
 """
 
 from __future__ import annotations
@@ -10,8 +12,26 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import sympy as sp
+from sympy.printing.c import C99CodePrinter
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.precedence import PRECEDENCE
+
+
+def _float_literal(value: float) -> str:
+    """A float as a literal valid in Python and C, negative ones parenthesized."""
+    text = repr(float(value))
+    return f"({text})" if text.startswith("-") else text
+
+
+def _number(expr) -> str | None:
+    """A constant irrational subexpression (``sqrt(3)``, ``2**(1/3)``) as a float literal,
+    folded at generation time instead of evaluated on every call; None for anything else."""
+    if expr.is_number and not expr.is_Rational:
+        try:
+            return _float_literal(float(expr))
+        except TypeError:  # complex
+            return None
+    return None
 
 
 class _Printer(NumPyPrinter):
@@ -23,10 +43,16 @@ class _Printer(NumPyPrinter):
     def _print_Integer(self, expr):  # noqa: N802
         return f"{int(expr)}.0" if abs(int(expr)) < 2**53 else repr(float(expr))
 
+    def _print_Float(self, expr):  # noqa: N802
+        return _float_literal(float(expr))
+
     def _print_Pow(self, expr, rational=False):  # noqa: N802
         # integer powers stay integer (numpy's fast paths); x**2 becomes (x*x), parenthesized
         # because the printer gives a Pow the precedence of a power: unparenthesized,
         # a/x**2 would print as a/x*x
+        folded = _number(expr)
+        if folded is not None:
+            return folded
         base, exp = expr.base, expr.exp
         b = self.parenthesize(base, PRECEDENCE["Pow"], strict=False)
         if exp.is_Integer and int(exp) == 1:
@@ -41,17 +67,58 @@ class _Printer(NumPyPrinter):
         return super()._print_Pow(expr, rational=rational)
 
 
+class _CPrinter(C99CodePrinter):
+    """C99 for the fast path: the same literals and integer powers as :class:`_Printer`;
+    every variable prefixed ``v_`` (no clash with ``gamma``, ``y1`` or ``j0`` of libm)."""
+
+    def _print_Symbol(self, expr):  # noqa: N802
+        return f"v_{expr.name}"
+
+    def _print_Rational(self, expr):  # noqa: N802
+        return _Printer._print_Rational(self, expr)
+
+    def _print_Integer(self, expr):  # noqa: N802
+        return _Printer._print_Integer(self, expr)
+
+    def _print_Float(self, expr):  # noqa: N802
+        return _float_literal(float(expr))
+
+    def _print_Pow(self, expr, rational=False):  # noqa: N802
+        folded = _number(expr)
+        if folded is not None:
+            return folded
+        base, exp = expr.base, expr.exp
+        b = self.parenthesize(base, PRECEDENCE["Pow"], strict=False)
+        if exp.is_Integer and int(exp) == 1:
+            return b
+        if exp.is_Integer and 1 < int(exp) <= 3:
+            return "(" + "*".join([b] * int(exp)) + ")"
+        if exp.is_Integer and -3 <= int(exp) < 0:
+            return "(1.0/(" + "*".join([b] * -int(exp)) + "))"
+        if exp == sp.Rational(1, 2):
+            return f"sqrt({self._print(base)})"
+        if exp == sp.Rational(-1, 2):  # as numpy's printer writes it: no pow() call
+            return f"(1.0/sqrt({self._print(base)}))"
+        return f"pow({self._print(base)}, {self._print(exp)})"
+
+
 @dataclass(frozen=True)
 class Kernel:
-    """Source of one generated function and its operation count after CSE."""
+    """Source of one generated function and its operation count after CSE; ``c_source``
+    the same program as a C function (empty unless asked for)."""
 
     name: str
     source: str
     operations: int
+    c_source: str = ""
+    arguments: tuple[str, ...] = ()
+    outputs: int = 0
 
 
-def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc: str) -> Kernel:
-    """Emit ``def name(*args): ... return (out0, out1, ...)`` with CSE."""
+def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc: str,
+           c: bool = False) -> Kernel:
+    """Emit ``def name(*args): ... return (out0, out1, ...)`` with CSE; with ``c``, also
+    ``static void name(double v_arg, ..., double *restrict out)`` from the same program."""
     printer = _Printer({"fully_qualified_modules": True, "allow_unknown_functions": False})
     subs, reduced = sp.cse([sp.sympify(o) for o in outputs],
                            symbols=sp.numbered_symbols("_c"), order="canonical")
@@ -65,4 +132,18 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
         outs.append(printer.doprint(expr))
         ops += int(sp.count_ops(expr))
     lines.append(f"    return ({', '.join(outs)},)")
-    return Kernel(name, "\n".join(lines) + "\n", ops)
+    c_source = _c_function(name, args, subs, reduced, doc) if c else ""
+    return Kernel(name, "\n".join(lines) + "\n", ops, c_source,
+                  tuple(str(a) for a in args), len(reduced))
+
+
+def _c_function(name, args, subs, reduced, doc) -> str:
+    cp = _CPrinter()
+    params = ", ".join([f"double v_{a}" for a in args] + ["double *restrict out"])
+    lines = [f"/* {doc.replace('*/', '* /')} */", f"static inline void {name}({params})", "{"]
+    for sym, expr in subs:
+        lines.append(f"    const double v_{sym} = {cp.doprint(expr)};")
+    for k, expr in enumerate(reduced):
+        lines.append(f"    out[{k}] = {cp.doprint(expr)};")
+    lines.append("}")
+    return "\n".join(lines) + "\n"

@@ -16,6 +16,7 @@ from ..declaration.parameters import Parameter
 from ..kinematics.ik_plan import IKStep
 from ..kinematics.rps_forward import DEGREE_BOUND, RPSSystem
 from ..solvers.closures import RPSEliminant
+from .c_module import c_module
 from .kernels import Kernel, kernel
 from .template import render
 
@@ -177,7 +178,8 @@ def _rps_with_constants(rps: RPSSystem, c: dict) -> RPSSystem:
 
 
 def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
-                  par: Sequence[sp.Symbol], sub: dict) -> tuple[list[Kernel], list[str], list]:
+                  par: Sequence[sp.Symbol], sub: dict,
+                  c: bool = False) -> tuple[list[Kernel], list[str], list]:
     """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows."""
     kernels, rows, mode_bits = [], [], []
     solved: list[sp.Symbol] = []
@@ -186,7 +188,7 @@ def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symb
         coeffs = [sp.sympify(c).subs(sub) for c in (st.A, st.B, st.C)]
         kern = kernel(f"_{prefix}{k}_{st.joint}", [*inputs, *solved, *par], coeffs,
                       f"Coefficients (A, B, C) of the generator solved for {st.joint} "
-                      f"(from {st.source}).")
+                      f"(from {st.source}).", c=c)
         kernels.append(kern)
         if st.degree == 2:
             mode_bits.append((str(st.joint), bit))
@@ -202,9 +204,10 @@ def _step_rows(prefix_rows: list[str]) -> list[str]:
     return [r.strip().rstrip(",") for r in prefix_rows]
 
 
-def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
-    """Source text of ``generated/<name>.py`` (deterministic for equal inputs) and the
-    operation count of each kernel."""
+def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
+    """Source text of ``generated/<name>.py`` (deterministic for equal inputs), the
+    operation count of each kernel, and the source of ``generated/<name>.c`` (the compiled
+    fast path of the IK, its limits and its Jacobian)."""
     from .. import runtime
 
     if spec.constants:
@@ -215,8 +218,9 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
     # the pose is converted to Study coordinates once per call; the IK steps are polynomial
     # in those coordinates
     kernels = [kernel("_study", [*spec.pose, *par], [sub[y] for y in study],
-                      "Study coordinates STUDY_POSE of the pose (POSE).")]
-    step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {})
+                      "Study coordinates STUDY_POSE of the pose (POSE).", c=True)]
+    step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {},
+                                                       c=True)
     kernels += step_kernels
     bit = len(mode_bits)
     fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
@@ -256,16 +260,17 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
     if linear:
         kernels.append(kernel("_pivots", [*study, *spec.joints, *par], piv + piv_scale,
                               "Pivots dG_k/dq_k of the linear IK steps and their row scales "
-                              "(in Study coordinates)."))
+                              "(in Study coordinates).", c=True))
     kernels.append(kernel("_jac", args, tri,
                           "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
-                          "substitution: Ji is triangular in the solve order)."))
+                          "substitution: Ji is triangular in the solve order).", c=True))
     kernels.append(kernel("_ji", args, list(ji), "Input Jacobian dG/dq, row-major."))
     kernels.append(kernel("_jo_study", args, list(jo_study),
                           "Output Jacobian dG/dy in Study coordinates, row-major."))
     if spec.limits:
         kernels.append(kernel("_limit_values", args, [sp.sympify(lim[1]) for lim in spec.limits],
-                              "Quantities bounded by LIMITS (joint strokes, passive angles)."))
+                              "Quantities bounded by LIMITS (joint strokes, passive angles).",
+                              c=True))
     pose_functions, functions = [], []
     for fname, outs, exprs, doc in spec.pose_functions:
         kern = kernel(f"_pf_{fname}", [*spec.pose, *par], list(exprs), doc)
@@ -327,7 +332,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
                    "study=_rps_study)") if spec.rps else "None"
     names = ["ik", "ik_all", "ik_status", "ik_and_status", "ik_joint_status", "ik_explain",
              "fk", "fk_status", "jacobian",
-             "jacobian_status", "jacobian_and_status", "input_jacobian", "output_jacobian",
+             "jacobian_status", "jacobian_and_status", "ik_and_jacobian", "input_jacobian",
+             "output_jacobian",
              "singularities", "limit_values"]
     if passive_names:
         names.append("passive_joints")
@@ -382,7 +388,31 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int]]:
         "helical": [(str(h.rotation), str(h.translation), sp.sstr(h.pitch)) for h in helical],
         "helical_kernel": "_helical" if helical else "None",
     }
-    return render("module.py.j2", context), {k.name: k.operations for k in kernels}
+    by_name = {k.name: k for k in kernels}
+    ik_ops = sum(k.operations for k in [by_name["_study"], *step_kernels]
+                 + [by_name[n] for n in ("_pivots", "_limit_values") if n in by_name])
+    context["function_operations"] = [("ik", ik_ops),
+                                      ("ik_and_jacobian", ik_ops + by_name["_jac"].operations)]
+    c_source = c_module(
+        name=spec.name, derivation_hash=spec.derivation_hash, generator=spec.generator,
+        pose=context["pose"], study_pose=context["study_pose"], joints=context["joints"],
+        parameters=[p.name for p in spec.parameters], study=by_name["_study"],
+        steps=[(st.degree, k, b) for st, k, b in zip(
+            spec.steps, step_kernels, _bits(spec.steps))],
+        solve_index=context["solve_index"], pivots=by_name.get("_pivots"),
+        jac=by_name["_jac"], limits_kernel=by_name.get("_limit_values"),
+        limits=[(float(lim[2]), float(lim[3]), lim[4]) for lim in spec.limits])
+    return (render("module.py.j2", context), {k.name: k.operations for k in kernels},
+            c_source)
+
+
+def _bits(steps: Sequence[IKStep]) -> list:
+    """The mode bit of each step (quadratic steps in order), None for a linear one."""
+    out, bit = [], 0
+    for st in steps:
+        out.append(bit if st.degree == 2 else None)
+        bit += st.degree == 2
+    return out
 
 
 def module_source(d, generator: str):
@@ -420,8 +450,8 @@ def module_source(d, generator: str):
         link_constants=d.constants,
         home=tuple(m.home) if m.home else None,
         physical_branch=tuple((b.joint, b.declared) for b in d.branches))
-    source, ops = write_ik_module(spec)
-    return GeneratedModule(m.name, source, frozen_map(ops))
+    source, ops, c_source = write_ik_module(spec)
+    return GeneratedModule(m.name, source, frozen_map(ops), c_source=c_source)
 
 
 def _passive_kernels(spec, study, par, kernels):

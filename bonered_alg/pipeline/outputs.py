@@ -1,10 +1,10 @@
 """The files a derivation writes, rendered in memory first, then written atomically.
 
-``generated/<name>.py``, ``derivations/<name>.tex``, ``derivations/<name>.verification.json``,
-``derivations/<name>.algebra.json`` (the long polynomials the report summarizes) and the
-studies' files beside the report.  :func:`write` writes nothing unless every file
-rendered, each through a temporary file and a rename, and skips files whose bytes are
-unchanged.
+``generated/<name>.py`` (and ``.c``, its compiled fast path), ``derivations/<name>.tex``,
+``derivations/<name>.verification.json``, ``derivations/<name>.algebra.json`` (the long
+polynomials the report summarizes) and the studies' files beside the report. :func:`write`
+writes nothing unless every file rendered, each through a temporary file and a rename, and
+skips files whose bytes are unchanged.
 """
 
 from __future__ import annotations
@@ -31,6 +31,7 @@ def files(record: Record) -> dict[str, str | bytes]:
     name = record.derivation.mechanism.name
     out: dict[str, str | bytes] = {
         f"generated/{name}.py": record.generated.source,
+        f"generated/{name}.c": record.generated.c_source,
         f"derivations/{name}.tex": render_report(record),
         f"derivations/{name}.verification.json": verification_json(record.verification),
         f"derivations/{name}.algebra.json": algebra_json(record.derivation),

@@ -155,6 +155,7 @@ class GeneratedModule:
     source: str
     operations: Mapping[str, int]
     module: ModuleType | None = None
+    c_source: str = ""  # generated/<name>.c, the compiled fast path
 
     @property
     def total_operations(self) -> int:

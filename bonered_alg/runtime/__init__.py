@@ -1,14 +1,15 @@
 """The numpy-only runtime every generated module imports (``bonered_alg.generated.<name>``).
 
 Generated modules hold tables, kernels and thin wrappers; the algorithms are here, once:
-argument checks (:mod:`.inputs`), back-substitution (:mod:`.backsubstitution`), the model
-with IK, Jacobians, limits and singularities (:mod:`.model`), forward kinematics
-(:mod:`.fk`, :mod:`.rps`) and the status codes (:mod:`.status`).  Importing it never
-imports sympy.
+argument checks (:mod:`.inputs`), the compiled fast path (:mod:`.compiled`), back-
+substitution (:mod:`.backsubstitution`), the model with IK, Jacobians, limits and
+singularities (:mod:`.model`), forward kinematics (:mod:`.fk`, :mod:`.rps`) and the status
+codes (:mod:`.status`). Importing it never imports sympy.
 """
 
 from __future__ import annotations
 
+from .compiled import FastPath
 from .model import ForwardKinematics, Model, RPSKernels
 from .status import (
     FORWARD_SINGULAR,
@@ -28,7 +29,7 @@ from .status import (
 
 # the contract between the code generator and this runtime; a generated module states the
 # version it was written for, and importing it with another runtime fails clearly
-API_VERSION = 2
+API_VERSION = 3
 
 
 def require(version: int, mechanism: str) -> None:
@@ -39,7 +40,7 @@ def require(version: int, mechanism: str) -> None:
 
 
 __all__ = ["API_VERSION", "FORWARD_SINGULAR", "INPUT_SINGULAR", "INVALID_INPUT",
-           "JOINT_AT_INFINITY", "NO_REAL_SOLUTION", "NOT_SOLVED", "OK", "ON_BOUNDARY",
+           "FastPath", "JOINT_AT_INFINITY", "NO_REAL_SOLUTION", "NOT_SOLVED", "OK", "ON_BOUNDARY",
            "OUTSIDE_CHART",
            "PASSIVE_JOINT_LIMIT", "STATUS", "STROKE_LIMIT", "ForwardKinematics", "Model",
            "RPSKernels", "UNVERIFIED", "require"]

@@ -99,14 +99,54 @@ class Model:
     # singularities that are the determinant of a matrix: name -> (kernel of its n*n
     # entries, row-major, in the Study coordinates and joints; n)
     singularity_matrices: Mapping[str, tuple] = field(default_factory=dict)
+    # the compiled IK, limits and Jacobian (runtime.compiled.FastPath), or None
+    fast: object | None = None
 
     # ------------------------------------------------------------ inverse kinematics
-    def solve(self, pose, mode, par, with_status=False, limits=True):
+    def _fast_path(self, func, fast, par):
+        """The compiled fast path to use for this call, or None (numpy).  ``fast``: None
+        (use it where available and ``BONERED_ALG_FAST`` does not say 0), False (never),
+        True (required: an error where it is unavailable)."""
+        if fast is not None and not isinstance(fast, (bool, numpy.bool_)):
+            raise TypeError(f"{self.mechanism}.{func}: fast must be None, True or False, got "
+                            f"{fast!r}")
+        if fast is False:
+            return None
+        from .compiled import enabled_by_environment
+
+        if fast is None and not enabled_by_environment():
+            return None
+        why = ""
+        if self.fast is None:
+            why = "this module was not imported from a file with its generated .c beside it"
+        elif any(numpy.ndim(v) for v in par):
+            why = "geometric parameters given as arrays (the fast path takes scalars)"
+        elif self.fast.library() is None:
+            why = self.fast.reason
+        if not why:
+            return self.fast
+        if fast:
+            raise RuntimeError(f"{self.mechanism}.{func}: fast=True, but the compiled fast "
+                               f"path cannot be used: {why}")
+        return None
+
+    def solve(self, pose, mode, par, with_status=False, limits=True, fast=None,
+              func="ik"):
         """Inverse kinematics of one working mode; NaN at input singularities of linear
         steps and, with ``limits``, outside the ranges of ``LIMITS``.
 
         A linear step ``B q + C = 0`` is singular where its pivot ``B = dG/dq`` vanishes
-        relative to the generator's derivatives (the joint is then undetermined)."""
+        relative to the generator's derivatives (the joint is then undetermined).  Through
+        the compiled fast path where available (``fast``), else in numpy, in chunks of
+        CHUNK poses (temporaries that stay in cache, memory bounded at any batch size)."""
+        compiled = self._fast_path(func, fast, par)
+        if compiled is not None:
+            q, status, _ = compiled.solve(pose, par, mode, limits, False)
+            return q, (status if with_status else None)
+        return _chunked(pose, par, lambda p, pr: self._solve(p, mode, pr, with_status,
+                                                             limits))
+
+    def _solve(self, pose, mode, par, with_status, limits):
         shape = pose.shape[:-1]
         with numpy.errstate(all="ignore"):
             values = self.study(*columns(pose), *par)
@@ -164,21 +204,21 @@ class Model:
                 check.parameters(self, func, params or {}), check.flag(self, func, "limits",
                                                                        limits))
 
-    def ik(self, pose, mode=0, limits=True, params=None):
+    def ik(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik", pose, mode, limits, params)
-        return self.solve(pose, mode, par, False, limits)[0]
+        return self.solve(pose, mode, par, False, limits, fast, "ik")[0]
 
-    def ik_status(self, pose, mode=0, limits=True, params=None):
+    def ik_status(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik_status", pose, mode, limits, params)
-        return self.solve(pose, mode, par, True, limits)[1]
+        return self.solve(pose, mode, par, True, limits, fast, "ik_status")[1]
 
-    def ik_and_status(self, pose, mode=0, limits=True, params=None):
+    def ik_and_status(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik_and_status", pose, mode, limits, params)
-        return self.solve(pose, mode, par, True, limits)
+        return self.solve(pose, mode, par, True, limits, fast, "ik_and_status")
 
-    def ik_all(self, pose, limits=True, params=None):
+    def ik_all(self, pose, limits=True, params=None, fast=None):
         pose, _, par, limits = self._ik_args("ik_all", pose, 0, limits, params)
-        return numpy.stack([self.solve(pose, m, par, False, limits)[0]
+        return numpy.stack([self.solve(pose, m, par, False, limits, fast, "ik_all")[0]
                             for m in range(self.modes)], axis=-2)
 
     # ------------------------------------------------------------ why a pose fails
@@ -333,12 +373,26 @@ class Model:
         return singular
 
     def jacobian_and_status(self, pose, mode=0, limits=True, params=None,
-                            func="jacobian_and_status"):
+                            func="jacobian_and_status", fast=None):
         """``dq/dX`` by forward substitution (Ji is triangular in the solve order) and the
         status: an IK status, or INPUT_SINGULAR where a pivot vanishes or a quadratic step
         has a double root."""
+        _, J, status = self.ik_and_jacobian(pose, mode, limits, params, func, fast)
+        return J, status
+
+    def ik_and_jacobian(self, pose, mode=0, limits=True, params=None,
+                        func="ik_and_jacobian", fast=None):
+        """``(q, dq/dX, status)`` from one solve: ``ik``, ``jacobian`` and
+        ``jacobian_status`` together."""
         pose, mode, par, limits = self._ik_args(func, pose, mode, limits, params)
-        q, status = self.solve(pose, mode, par, True, limits)
+        compiled = self._fast_path(func, fast, par)
+        if compiled is not None:
+            q, status, J = compiled.solve(pose, par, mode, limits, True)
+            return q, J, status
+        return _chunked(pose, par, lambda p, pr: self._ik_jacobian(p, mode, pr, limits))
+
+    def _ik_jacobian(self, pose, mode, par, limits):
+        q, status = self._solve(pose, mode, par, True, limits)
         shape = pose.shape[:-1]
         n, m = len(self.joints), len(self.pose)
         with numpy.errstate(all="ignore"):
@@ -352,7 +406,7 @@ class Model:
         J[singular] = numpy.nan
         ik_ok = (status == OK) | (status == ON_BOUNDARY)
         status = numpy.where(ik_ok & singular, INPUT_SINGULAR, status).astype(numpy.int8)
-        return J, status
+        return q, J, status
 
     def singularities(self, pose, q, params=None):
         pose = check.pose(self, "singularities", pose)
@@ -472,6 +526,33 @@ class Model:
         with numpy.errstate(all="ignore"):
             out = kern(*columns(values), *par)
         return stacked(out, values.shape[:-1])
+
+
+# poses per numpy evaluation: each kernel temporary (CHUNK doubles, 128 KiB) stays in cache
+CHUNK = 16384
+
+
+def _chunked(pose, par, fn):
+    """``fn(pose, par)`` over chunks of CHUNK poses, the results (arrays with the poses'
+    leading shape, or None) put back together; array parameters are split alike."""
+    shape = pose.shape[:-1]
+    n = int(numpy.prod(shape, dtype=numpy.int64))
+    if n <= CHUNK:
+        return fn(pose, par)
+    flat = pose.reshape(n, pose.shape[-1])
+    par_flat = [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
+                for v in par]
+    outs = None
+    for lo in range(0, n, CHUNK):
+        hi = min(n, lo + CHUNK)
+        part = fn(flat[lo:hi], [v if numpy.ndim(v) == 0 else v[lo:hi] for v in par_flat])
+        if outs is None:
+            outs = [None if r is None else numpy.empty((n,) + r.shape[1:], dtype=r.dtype)
+                    for r in part]
+        for o, r in zip(outs, part):
+            if o is not None:
+                o[lo:hi] = r
+    return tuple(None if o is None else o.reshape(shape + o.shape[1:]) for o in outs)
 
 
 def linear_candidates(values):

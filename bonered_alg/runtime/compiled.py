@@ -1,0 +1,182 @@
+"""The compiled fast path of a generated module (``generated/<name>.c``).
+
+On first use the C file is compiled with the system C compiler (``$CC``, else ``cc``) into
+a shared library in the cache directory (``$BONERED_ALG_CACHE``, else
+``$XDG_CACHE_HOME/bonered_alg`` or ``~/.cache/bonered_alg``), named by a hash of the
+sources, the compiler and its flags, and loaded with ctypes; later imports load it
+directly.  Large batches are split over threads (ctypes releases the GIL during the call):
+``$BONERED_ALG_THREADS``, else the number of cores.  ``BONERED_ALG_FAST=0`` switches the
+fast path off (the numpy runtime is the reference and the fallback); where no compiler is
+found or compiling fails, the numpy runtime is used and :attr:`FastPath.reason` says why.
+
+Flags: ``-O2 -ffp-contract=off`` and no ``-ffast-math``: IEEE arithmetic in the order the
+kernels are written (no fused multiply-adds, NaN and infinity kept), the baseline
+instruction set (no ``-march=native``), so the library computes what the numpy kernels
+compute, to rounding in libm's elementary functions.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import hashlib
+import os
+import shutil
+import subprocess
+import tempfile
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy
+
+FLAGS = ("-O2", "-fPIC", "-shared", "-ffp-contract=off", "-fno-math-errno", "-std=c99")
+HEADER_DIR = Path(__file__).resolve().parent / "c"
+C_ABI = 1
+# poses per thread below which one thread does the whole batch
+MIN_PER_THREAD = 20_000
+
+_lock = threading.Lock()
+_pool: ThreadPoolExecutor | None = None
+
+
+def enabled_by_environment() -> bool:
+    return os.environ.get("BONERED_ALG_FAST", "1").strip().lower() not in ("0", "false", "no",
+                                                                           "off")
+
+
+def cache_dir() -> Path:
+    env = os.environ.get("BONERED_ALG_CACHE")
+    if env:
+        return Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "bonered_alg"
+
+
+def threads() -> int:
+    env = os.environ.get("BONERED_ALG_THREADS")
+    if env:
+        try:
+            return max(1, int(env))
+        except ValueError:
+            raise ValueError(f"BONERED_ALG_THREADS must be a positive integer, got {env!r}") \
+                from None
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+               else (os.cpu_count() or 1))
+
+
+def _executor(n: int) -> ThreadPoolExecutor:
+    global _pool
+    with _lock:
+        if _pool is None or _pool._max_workers < n:  # noqa: SLF001
+            _pool = ThreadPoolExecutor(max_workers=n, thread_name_prefix="bonered_fast")
+        return _pool
+
+
+class FastPath:
+    """The compiled IK, limits and Jacobian of one generated module, built lazily."""
+
+    def __init__(self, source: Path, mechanism: str, derivation_hash: str, n_pose: int,
+                 n_joints: int, n_par: int):
+        self.source = source
+        self.mechanism = mechanism
+        self.derivation_hash = derivation_hash
+        self.n_pose, self.n_joints, self.n_par = n_pose, n_joints, n_par
+        self.reason = ""  # why the fast path is unavailable, once tried
+        self._lib = None
+        self._tried = False
+
+    @classmethod
+    def beside(cls, module_file: str | None, mechanism: str, derivation_hash: str,
+               n_pose: int, n_joints: int, n_par: int) -> FastPath | None:
+        """The fast path of the generated module at ``module_file`` (``<name>.c`` beside
+        it), None where the module was not imported from a file."""
+        if not module_file:
+            return None
+        return cls(Path(module_file).with_suffix(".c"), mechanism, derivation_hash, n_pose,
+                   n_joints, n_par)
+
+    # ------------------------------------------------------------ building
+    def library(self):
+        """The loaded library, or None (``reason`` says why)."""
+        if self._tried:
+            return self._lib
+        with _lock:
+            if not self._tried:
+                try:
+                    self._lib = self._load()
+                except (OSError, RuntimeError, subprocess.SubprocessError) as exc:
+                    self.reason = f"{self.mechanism}: compiled fast path unavailable: {exc}"
+                    self._lib = None
+                self._tried = True
+        return self._lib
+
+    def _load(self):
+        if not self.source.is_file():
+            raise RuntimeError(f"{self.source} not found")
+        text = self.source.read_bytes()
+        if self.derivation_hash.encode() not in text:
+            raise RuntimeError(f"{self.source} is not of derivation {self.derivation_hash[:12]}"
+                               " (stale: run `make derive`)")
+        header = (HEADER_DIR / "bonered_fast.h").read_bytes()
+        cc = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
+        if not cc:
+            raise RuntimeError("no C compiler (cc, gcc or $CC) found")
+        version = subprocess.run([cc, "--version"], capture_output=True, timeout=30).stdout
+        key = hashlib.sha256(b"\0".join([text, header, version, " ".join(FLAGS).encode()]))
+        lib = cache_dir() / f"{self.mechanism}-{key.hexdigest()[:16]}.so"
+        if not lib.is_file():
+            lib.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(suffix=".so", dir=lib.parent)
+            os.close(fd)
+            try:
+                run = subprocess.run([cc, *FLAGS, "-I", str(HEADER_DIR), "-o", tmp,
+                                      str(self.source), "-lm"], capture_output=True,
+                                     timeout=300)
+                if run.returncode != 0:
+                    raise RuntimeError(f"{cc} failed: {run.stderr.decode(errors='replace')[:2000]}")
+                os.replace(tmp, lib)  # atomic: a concurrent build writes the same bytes
+            finally:
+                if os.path.exists(tmp):
+                    os.unlink(tmp)
+        handle = ctypes.CDLL(str(lib))
+        if handle.bonered_abi() != C_ABI:
+            raise RuntimeError(f"{lib} has C ABI {handle.bonered_abi()}, expected {C_ABI}")
+        found = (ctypes.c_char * (len(self.derivation_hash) + 1)).in_dll(
+            handle, "bonered_derivation_hash")
+        if found.value.decode() != self.derivation_hash:
+            raise RuntimeError(f"{lib} is of another derivation")
+        fn = handle.bonered_solve
+        fn.restype = None
+        fn.argtypes = [ctypes.c_long, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int,
+                       ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
+        return handle
+
+    # ------------------------------------------------------------ calling
+    def solve(self, pose: numpy.ndarray, par, mode: int, limits: bool, jacobian: bool):
+        """IK (and dq/dX) of poses (..., n_pose) with scalar parameters: (q, status, J or
+        None), shapes as the numpy runtime returns them."""
+        lib = self.library()
+        shape = pose.shape[:-1]
+        n = int(numpy.prod(shape, dtype=numpy.int64))
+        flat = numpy.ascontiguousarray(pose, dtype=numpy.float64).reshape(n, self.n_pose)
+        parv = numpy.ascontiguousarray([float(v) for v in par], dtype=numpy.float64)
+        q = numpy.empty((n, self.n_joints))
+        status = numpy.empty(n, dtype=numpy.int8)
+        jac = numpy.empty((n, self.n_joints, self.n_pose)) if jacobian else None
+
+        def run(lo: int, hi: int) -> None:
+            lib.bonered_solve(
+                hi - lo, flat[lo:].ctypes.data, parv.ctypes.data, int(mode), int(bool(limits)),
+                q[lo:].ctypes.data, status[lo:].ctypes.data,
+                jac[lo:].ctypes.data if jacobian else None)
+
+        k = min(threads(), max(1, n // MIN_PER_THREAD))
+        if k == 1:
+            run(0, n)
+        else:
+            bounds = [n * i // k for i in range(k + 1)]
+            futures = [_executor(k).submit(run, bounds[i], bounds[i + 1]) for i in range(k)]
+            for f in futures:
+                f.result()
+        return (q.reshape(shape + (self.n_joints,)), status.reshape(shape),
+                None if jac is None else jac.reshape(shape + (self.n_joints, self.n_pose)))

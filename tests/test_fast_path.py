@@ -1,0 +1,145 @@
+"""The compiled fast path (generated/<name>.c, bonered_alg.runtime.compiled) against the
+numpy runtime, the reference: the same status codes pose by pose, the same NaN, values equal
+to 1e-12 relative (issue 15, item 2); its switches, its cache and its failures."""
+
+import importlib
+import re
+
+import numpy as np
+import pytest
+from conftest import ROOT
+
+from bonered_alg.runtime import compiled
+from bonered_alg.runtime import status as st
+
+NAMES = ["planar_tripod", "tripod_planar", "pro_hep_lct", "stewart"]
+# half-widths of the random perturbation of HOME: mm for lengths, rad for angles
+SPREAD = {"planar_tripod": (40, 40, 40, 0.3, 0.3, 0.8),
+          "tripod_planar": (60, 60, 60, 0.4, 0.4, 0.8),
+          "stewart": (60, 60, 60, 0.4, 0.4, 0.8), "pro_hep_lct": (120, 120, 120, 120)}
+
+
+def _module(name):
+    return importlib.import_module(f"bonered_alg.generated.{name}")
+
+
+def _poses(name, n, seed=0):
+    """HOME perturbed (reachable and unreachable poses: every status the limits give), a
+    non-finite row and an exactly repeated row."""
+    m = _module(name)
+    rng = np.random.default_rng(seed)
+    home, spread = np.asarray(m.HOME), np.asarray(SPREAD[name])
+    p = home + rng.uniform(-1, 1, (n, len(home))) * spread
+    p[0] = home
+    p[1, 0] = np.nan
+    p[2, -1] = np.inf
+    p[3] = p[4]
+    return p
+
+
+def _close(a, b, tol=1e-12):
+    """Equal NaN patterns and |a - b| <= tol (1 + |a|) elementwise (mm, rad and mm/rad)."""
+    assert (np.isnan(a) == np.isnan(b)).all()
+    ok = ~np.isnan(a)
+    err = np.abs(a[ok] - b[ok]) / (1 + np.abs(a[ok]))
+    assert err.size == 0 or err.max() <= tol, err.max()
+
+
+def test_header_status_codes_are_the_runtime_codes():
+    text = (ROOT / "bonered_alg" / "runtime" / "c" / "bonered_fast.h").read_text()
+    codes = dict(re.findall(r"#define BF_(\w+) (\S+)", text))
+    for name in ("OK", "NO_REAL_SOLUTION", "JOINT_AT_INFINITY", "ON_BOUNDARY", "INPUT_SINGULAR",
+                 "INVALID_INPUT", "STROKE_LIMIT", "PASSIVE_JOINT_LIMIT"):
+        assert int(codes[name]) == getattr(st, name), name
+    assert float(codes["DISC_RTOL"]) == st.DISC_RTOL and float(codes["DET_RTOL"]) == st.DET_RTOL
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_generated_c_is_of_the_same_derivation(name):
+    m = _module(name)
+    text = (ROOT / "generated" / f"{name}.c").read_text()
+    assert f"Derivation hash: {m.DERIVATION_HASH}" in text
+    assert m._MODEL.fast is not None and m._MODEL.fast.library() is not None, \
+        m._MODEL.fast.reason
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_compiled_agrees_with_numpy_in_every_mode(name):
+    m = _module(name)
+    poses = _poses(name, 3000)
+    seen = set()
+    for limits in (True, False):
+        for mode in range(min(m.MODES, 8)):
+            qa, Ja, sa = m.ik_and_jacobian(poses, mode=mode, limits=limits, fast=False)
+            qb, Jb, sb = m.ik_and_jacobian(poses, mode=mode, limits=limits, fast=True)
+            assert (sa == sb).all(), np.flatnonzero(sa != sb)[:5]
+            _close(qa, qb)
+            _close(Ja, Jb)
+            q1, s1 = m.ik_and_status(poses, mode=mode, limits=limits, fast=True)
+            assert (s1 == m.ik_status(poses, mode=mode, limits=limits, fast=False)).all()
+            _close(m.ik(poses, mode=mode, limits=limits, fast=False), q1)
+            seen |= set(np.unique(sa).tolist())
+    assert {st.OK, st.INVALID_INPUT} <= seen and len(seen) >= 3, seen
+    _close(m.ik_all(poses[:200], fast=False), m.ik_all(poses[:200], fast=True))
+
+
+def test_large_batches_split_over_threads_give_the_same_answer(monkeypatch):
+    m = _module("planar_tripod")
+    poses = _poses("planar_tripod", 3 * compiled.MIN_PER_THREAD + 7, seed=3)
+    monkeypatch.setenv("BONERED_ALG_THREADS", "1")
+    q1, J1, s1 = m.ik_and_jacobian(poses, fast=True)
+    monkeypatch.setenv("BONERED_ALG_THREADS", "3")
+    q3, J3, s3 = m.ik_and_jacobian(poses.reshape(-1, 1, 6), fast=True)  # any leading shape
+    assert q3.shape == (len(poses), 1, 6) and J3.shape == (len(poses), 1, 6, 6)
+    assert np.array_equal(q1, q3[:, 0], equal_nan=True) and (s1 == s3[:, 0]).all()
+    assert np.array_equal(J1, J3[:, 0], equal_nan=True)
+
+
+def test_switches(monkeypatch):
+    m = _module("planar_tripod")
+    home = np.asarray(m.HOME)
+    monkeypatch.delenv("BONERED_ALG_FAST", raising=False)  # `bonered-alg derive` sets it
+    assert m._MODEL._fast_path("ik", None, [190.0, 190.0]) is m._MODEL.fast
+    monkeypatch.setenv("BONERED_ALG_FAST", "0")
+    assert m._MODEL._fast_path("ik", None, [190.0, 190.0]) is None
+    assert m._MODEL._fast_path("ik", True, [190.0, 190.0]) is m._MODEL.fast  # keyword wins
+    monkeypatch.delenv("BONERED_ALG_FAST")
+    # array parameters: numpy; required fast path: a clear error
+    ra = np.array([190.0, 195.0])
+    q = m.ik(np.stack([home, home]), ra=ra)
+    assert np.isfinite(q).all()
+    with pytest.raises(RuntimeError, match="planar_tripod.ik: fast=True.*arrays"):
+        m.ik(np.stack([home, home]), ra=ra, fast=True)
+
+
+def test_module_without_its_c_file_falls_back_and_says_why(tmp_path):
+    """An in-memory module (the pipeline's own import) has no .c beside it; a stale .c (of
+    another derivation) is refused."""
+    src = (ROOT / "generated" / "pro_hep_lct.py").read_text()
+    ns = {}
+    exec(compile(src, "<in memory>", "exec"), ns)  # noqa: S102 - our own generated output
+    home = np.asarray(ns["HOME"])
+    assert np.isfinite(ns["ik"](home)).all()
+    with pytest.raises(RuntimeError, match="not imported from a file"):
+        ns["ik"](home, fast=True)
+    (tmp_path / "pro_hep_lct.c").write_text("/* Derivation hash: 0123 */\n")
+    fp = compiled.FastPath.beside(str(tmp_path / "pro_hep_lct.py"), "pro_hep_lct",
+                                  ns["DERIVATION_HASH"], 4, 4, 1)
+    assert fp.library() is None and "stale" in fp.reason
+
+
+def test_the_library_is_built_once_into_the_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("BONERED_ALG_CACHE", str(tmp_path / "cache"))
+    m = _module("pro_hep_lct")
+    args = (str(ROOT / "generated" / "pro_hep_lct.py"), "pro_hep_lct", m.DERIVATION_HASH,
+            len(m.POSE), len(m.JOINTS), len(m.PARAMETERS))
+    assert compiled.FastPath.beside(*args).library() is not None
+    built = list((tmp_path / "cache").glob("pro_hep_lct-*.so"))
+    assert len(built) == 1
+    stamp = built[0].stat().st_mtime_ns
+    assert compiled.FastPath.beside(*args).library() is not None
+    assert built[0].stat().st_mtime_ns == stamp  # loaded, not rebuilt
+    monkeypatch.setenv("CC", str(tmp_path / "no-such-compiler"))
+    monkeypatch.setenv("BONERED_ALG_CACHE", str(tmp_path / "other"))
+    fp = compiled.FastPath.beside(*args)
+    assert fp.library() is None and "no-such-compiler" in fp.reason
