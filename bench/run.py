@@ -22,6 +22,7 @@ import sympy as sp
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "bench"))
 
 from bonered_alg.generated import pro_hep_lct as gen  # noqa: E402
 from independent_pro_hep_lct import GEOMETRY  # noqa: E402
@@ -36,6 +37,7 @@ from bonered_alg.errors import EngineTimeoutError  # noqa: E402
 from bonered_alg.mechanisms import pro_hep_lct as phl  # noqa: E402
 from bonered_alg.pipeline.algebra import Algebra  # noqa: E402
 from bonered_alg.pipeline.runner import derive  # noqa: E402
+from bonered_alg.runtime import compiled  # noqa: E402
 
 
 def median_time(fn, repeat):
@@ -429,6 +431,138 @@ def pro_hep_lct_tool_benchmarks(n=100_000, n_fk=10_000, sympy_budget=120.0):
     return out
 
 
+def hand_written_benchmarks(n=1_000_000):
+    """Issue 15's baseline: the generated functions (limits off) against hand-written numpy
+    of the same closed forms (bench/hand_written.py), IK and IK + Jacobian, on the same
+    poses: the numpy runtime (``fast=False``) and the compiled fast path (``fast=True``, all
+    cores); ratio = hand-written time / generated time (>= 1: the generated code is as
+    fast).  IK + Jacobian is ``ik_and_jacobian`` (one solve for both)."""
+    import hand_written as hw
+    from bonered_alg.generated import planar_tripod as pt
+    from bonered_alg.generated import pro_hep_lct as ph
+    from bonered_alg.generated import stewart as st
+    from bonered_alg.generated import tripod_planar as tp
+    from independent_pro_hep_lct import GEOMETRY as G
+
+    rng = np.random.default_rng(15)
+    six = np.column_stack([rng.uniform(-40, 40, n), rng.uniform(-40, 40, n),
+                           rng.uniform(190, 235, n), rng.uniform(-0.15, 0.15, n),
+                           rng.uniform(-0.15, 0.15, n), rng.uniform(-0.6, 0.6, n)])
+    ph_poses = np.array(reachable_pro_hep_lct(n, rng))
+    lifted = six + [0, 0, 10.0, 0, 0, 0]
+    cases = {
+        "planar_tripod": (pt, six, {}, lambda j: hw.planar_tripod(six, jacobian=j)),
+        "stewart": (st, lifted, {}, lambda j: hw.stewart(lifted, jacobian=j)),
+        "pro_hep_lct": (ph, ph_poses, G,
+                        lambda j: hw.pro_hep_lct(ph_poses, G, (1.0, -1.0, 1.0), jacobian=j)),
+        "tripod_planar": (tp, tp.pose_from_paper_coordinates(six), {},
+                          lambda j: paper_ik_tripod_planar(six) if not j else None),
+    }
+    out = {"poses": n, "threads": compiled.threads()}
+    for name, (m, poses, par, hand) in cases.items():
+        row = {"poses": len(poses)}
+        t_hand = median_time(lambda h=hand: h(False), 5)
+        row["hand_written_ik_poses_per_s"] = len(poses) / t_hand
+        for label, fast in (("numpy", False), ("compiled", True)):
+            m.ik(poses[:10], limits=False, fast=fast, **par)  # built before timing
+            t = median_time(lambda m=m, p=poses, k=par, f=fast: m.ik(
+                p, limits=False, fast=f, **k), 5)
+            row[f"{label}_ik_poses_per_s"] = len(poses) / t
+            row[f"{label}_ik_ratio_vs_hand_written"] = t_hand / t
+            row[f"{label}_max_rel_difference_ik"] = _max_rel(
+                m.ik(poses, limits=False, fast=fast, **par), hand(False))
+        if name != "tripod_planar":  # no hand-written Jacobian of 001's closed forms
+            t_hand_j = median_time(lambda h=hand: h(True), 3)
+            row["hand_written_ik_plus_jacobian_poses_per_s"] = len(poses) / t_hand_j
+            ref = hand(True)[1]
+            for label, fast in (("numpy", False), ("compiled", True)):
+                t = median_time(lambda m=m, p=poses, k=par, f=fast: m.ik_and_jacobian(
+                    p, limits=False, fast=f, **k), 3)
+                row[f"{label}_ik_plus_jacobian_poses_per_s"] = len(poses) / t
+                row[f"{label}_ik_plus_jacobian_ratio_vs_hand_written"] = t_hand_j / t
+                row[f"{label}_max_rel_difference_jacobian"] = _max_rel(
+                    m.ik_and_jacobian(poses, limits=False, fast=fast, **par)[1], ref)
+        out[name] = row
+        print(name, row, flush=True)
+    return out
+
+
+def _max_rel(a, b):
+    """max |a - b| / (1 + |b|) over the entries both give (per matrix: relative to its
+    largest entry, so that an entry near zero in a near-singular matrix is not divided by
+    itself)."""
+    scale = 1 + (np.nanmax(np.abs(b), axis=(-2, -1), keepdims=True) if b.ndim == 3
+                 else np.abs(b))
+    return float(np.nanmax(np.abs(a - b) / scale))
+
+
+def bandwidth_bound(n_bytes=400_000_000):
+    """Memory bandwidth of this process (numpy copy and triad on arrays far larger than the
+    caches, one thread): bytes moved per second, the median of 5."""
+    a = np.ones(n_bytes // 8)
+    b = np.empty_like(a)
+    c = np.full_like(a, 2.0)
+    t_copy = median_time(lambda: np.copyto(b, a), 5)
+    # a = b + 3 c in two passes (numpy cannot fuse them): 5 streams of n_bytes
+    t_triad = median_time(lambda: (np.multiply(c, 3.0, out=a), np.add(a, b, out=a)), 5)
+    return {"copy_bytes_per_s": 2 * n_bytes / t_copy, "triad_bytes_per_s": 5 * n_bytes / t_triad,
+            "array_bytes": n_bytes}
+
+
+def membership_benchmarks(n=4_000_000):
+    """The workspace membership test (IK and every limit: ``ik_and_status``, limits on) of
+    the compiled fast path on one thread and on every core, against the memory-bandwidth
+    bound of the same run: a pose is read (len(POSE) doubles) and its joints and status
+    written (len(JOINTS) doubles + 1 byte), so bandwidth / bytes per pose bounds the rate."""
+    from bonered_alg.generated import planar_tripod as pt
+    from bonered_alg.generated import stewart as st
+    from bonered_alg.generated import tripod_planar as tp
+
+    bw = bandwidth_bound()
+    out = {"bandwidth": bw, "poses": n, "threads": compiled.threads()}
+    rng = np.random.default_rng(8)
+    for name, m in (("planar_tripod", pt), ("tripod_planar", tp), ("stewart", st)):
+        poses = np.asarray(m.HOME) + rng.uniform(-1, 1, (n, 6)) * [40, 40, 30, 0.15, 0.15, 0.6]
+        m.ik_and_status(poses[:10], fast=True)
+        rates = {}
+        for threads in (1, compiled.threads()):
+            os.environ["BONERED_ALG_THREADS"] = str(threads)
+            rates[threads] = n / median_time(lambda m=m, p=poses: m.ik_and_status(p, fast=True),
+                                             5)
+        os.environ.pop("BONERED_ALG_THREADS")
+        t_np = median_time(lambda m=m, p=poses[: n // 4]: m.ik_and_status(p, fast=False), 3)
+        per_pose = 8 * (len(m.POSE) + len(m.JOINTS)) + 1
+        bound = bw["copy_bytes_per_s"] / per_pose
+        best = max(rates.values())
+        row = {"compiled_poses_per_s_1_thread": rates[1],
+               "compiled_poses_per_s_all_cores": best,
+               "speedup_all_cores": best / rates[1],
+               "numpy_poses_per_s": (n // 4) / t_np,
+               "bytes_per_pose": per_pose, "bandwidth_bound_poses_per_s": bound,
+               "fraction_of_bandwidth_bound": best / bound,
+               "inside": float(np.mean(m.ik_status(poses[:100_000]) == m.OK))}
+        out[name] = row
+        print(name, row, flush=True)
+    return out
+
+
+def reachable_pro_hep_lct(n, rng):
+    """Poses of the Pro-Hep-LCT's planar chains (test geometry) built forward from joints
+    reachable by both lower chains and the upper rod."""
+    from independent_pro_hep_lct import GEOMETRY as g
+    from independent_pro_hep_lct import lower_leg1, upper
+
+    th1, th2 = rng.uniform(-1.2, 1.2, 3 * n), rng.uniform(-2.6, -0.2, 3 * n)
+    pd = lower_leg1(th1, th2)
+    r = np.hypot(pd[0], pd[1] + g["d"] / 2 - g["lq4d"])
+    ok = (abs(g["l3"] - g["l4"]) + 5 < r) & (r < g["l3"] + g["l4"] - 5)
+    pd = pd[:, ok][:, :n]
+    q5 = rng.uniform(100, 300, pd.shape[1])
+    q4 = q5 - rng.uniform(20, 150, pd.shape[1])
+    xu, yu = upper(q4, q5)
+    return np.column_stack([xu, yu, pd[0], pd[1]])
+
+
 def platform_ideal(engine, budget_s):
     """The mobile platform's ideal G of pro_hep_lct (both mounted chains), no cache."""
     from bonered_alg.solvers.legs import Elimination
@@ -444,13 +578,17 @@ def main():
     ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
     ap.add_argument("--poses", type=int, default=1_000_000)
     ap.add_argument("--sympy-budget", type=float, default=60.0)
-    ap.add_argument("--only", choices=["workspace", "pro_hep_lct_tool"], default=None,
+    ap.add_argument("--only", choices=["workspace", "pro_hep_lct_tool", "hand_written",
+                                       "membership"],
+                    default=None,
                     help="re-run one section and merge it into the existing --out file")
     args = ap.parse_args()
     if args.only:
         results = json.loads(args.out.read_text())
         results[args.only] = {"workspace": workspace_benchmarks,
-                              "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks}[args.only]()
+                              "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks,
+                              "hand_written": hand_written_benchmarks,
+                              "membership": membership_benchmarks}[args.only]()
         args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
         print(f"wrote {args.out} ({args.only} section)")
         return
@@ -466,6 +604,8 @@ def main():
         "planar_tripod": planar_tripod_benchmarks(args.poses),
         "tripod_planar": tripod_planar_benchmarks(args.poses),
         "workspace": workspace_benchmarks(),
+        "hand_written": hand_written_benchmarks(),
+        "membership": membership_benchmarks(),
         "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks(sympy_budget=args.sympy_budget),
     }
     args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")

@@ -16,7 +16,7 @@ import os
 import time
 from collections import Counter
 from collections.abc import Callable, Mapping
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
 from multiprocessing import get_context
 
@@ -26,6 +26,9 @@ from .grid import Grid
 from .membership import DEFAULT_CRITERIA, IN_WORKSPACE, Criteria, classify, load_module
 
 DEFAULT_CHUNK = 1 << 13  # 8192: arrays of 64 KB stay in cache (1.5x faster per core than 65536)
+# with the compiled fast path: fewer, larger chunks (the per-chunk Python work is then small
+# against the compiled call), below the size at which one call splits over threads itself
+COMPILED_CHUNK = 1 << 15
 MASK_LIMIT = 2 * 10**8  # samples beyond which the mask is not kept unless asked
 
 
@@ -106,7 +109,18 @@ def _merge(result: ScanResult, parts: list[ChunkResult], keep_mask: bool) -> Non
         result.mask = bits[:result.grid.size].astype(bool).reshape(result.grid.shape)
 
 
-def _run_local(tasks, workers, progress):
+def compiled_path(module, params: Mapping) -> bool:
+    """Whether ``module``'s IK runs through its compiled fast path with these parameters
+    (then chunks run on threads: the compiled call releases the GIL, and threads cost no
+    process start-up and no pickling)."""
+    model = getattr(module, "_MODEL", None)
+    if model is None or getattr(model, "fast", None) is None:
+        return False
+    par = [np.asarray(v) for v in params.values()]
+    return model._fast_path("scan", None, par) is not None  # noqa: SLF001
+
+
+def _run_local(tasks, workers, progress, threads=False):
     if workers == 1:
         out = []
         for i, t in enumerate(tasks):
@@ -116,7 +130,9 @@ def _run_local(tasks, workers, progress):
         return out
     out, pending = [], set()
     it = iter(tasks)
-    with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
+    pool = (ThreadPoolExecutor(max_workers=workers) if threads
+            else ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")))
+    with pool:
         for t in it:
             pending.add(pool.submit(scan_chunk, *t))
             if len(pending) >= 2 * workers:
@@ -161,23 +177,28 @@ def _run_dask(tasks, client, workers, progress):
 
 
 def scan(mechanism: str, grid: Grid, criteria: Criteria = DEFAULT_CRITERIA, *,
-         chunk: int = DEFAULT_CHUNK, workers: int | None = None, client=None,
+         chunk: int | None = None, workers: int | None = None, client=None,
          keep_mask: bool | None = None, progress: Callable[[int, int], None] | None = None,
          **params) -> ScanResult:
     """Scan ``grid`` for ``mechanism`` (a generated module's name).
 
-    ``workers``: processes (default: all cores); ``client``: None (local processes), a
-    ``dask.distributed.Client``, or ``"local"``; ``keep_mask``: keep the reachable mask
-    (default: when the grid has at most 2e8 samples); ``progress(done, total)`` is called
-    after each chunk; ``params``: geometric parameters passed to the generated functions.
-    Local workers are spawned processes: a script that scans with ``workers > 1`` needs the
-    usual ``if __name__ == "__main__":`` guard.
+    ``workers``: threads or processes (default: all cores); ``client``: None (local
+    workers), a ``dask.distributed.Client``, or ``"local"``; ``chunk``: samples per task
+    (default: DEFAULT_CHUNK, COMPILED_CHUNK with the compiled fast path); ``keep_mask``: keep
+    the reachable mask (default: when the grid has at most 2e8 samples); ``progress(done,
+    total)`` is called after each chunk; ``params``: geometric parameters passed to the
+    generated functions.  Where the module's compiled fast path is used, local workers are
+    threads; otherwise spawned processes, and a script that scans with ``workers > 1`` needs
+    the usual ``if __name__ == "__main__":`` guard.
     """
     module = load_module(mechanism)
     criteria.check(module)
     if tuple(grid.pose_names) != tuple(module.POSE):
         raise ValueError(f"{mechanism}: the grid's pose coordinates {grid.pose_names} are "
                          f"not the module's POSE {module.POSE}")
+    threads = client is None and compiled_path(module, params)
+    if chunk is None:
+        chunk = COMPILED_CHUNK if threads else DEFAULT_CHUNK
     if chunk % 8:
         raise ValueError(f"chunk must be a multiple of 8 (the mask is bit-packed), got {chunk}")
     workers = workers or os.cpu_count() or 1
@@ -186,7 +207,7 @@ def scan(mechanism: str, grid: Grid, criteria: Criteria = DEFAULT_CRITERIA, *,
              for a, b in grid.chunks(chunk)]
     t0 = time.perf_counter()
     if client is None:
-        parts = _run_local(tasks, workers, progress)
+        parts = _run_local(tasks, workers, progress, threads)
     else:
         parts = _run_dask(tasks, client, workers, progress)
     result = ScanResult(module.MECHANISM, grid, criteria, dict(params))

@@ -1,0 +1,151 @@
+"""Hand-written numpy IK and IK + Jacobian, from the papers' closed forms and plain geometry:
+what a user would write instead of importing the generated module (issue 15's baseline).
+
+Written from the papers and the layouts, not from generated code: planar_tripod from 000
+eq. (17) and (21) with their derivatives; stewart from the leg vectors |t + R b_k - a_k|;
+pro_hep_lct from the two-link and slider-rod geometry of 004 eq. (14)-(16) (test geometry of
+tests/independent_pro_hep_lct.py).  Each returns joints in the generated module's order and
+dq/dX with X as in its POSE.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+S3 = np.sqrt(3.0)
+
+
+# ------------------------------------------------------------------ planar_tripod (000)
+def planar_tripod(p, ra=190.0, rb=190.0, jacobian=False):
+    """000 eq. (17) (q1..q3, the planar stage) and eq. (21) (q4..q6, the tripod legs)."""
+    x, y, z, a, b, g = (p[:, i] for i in range(6))
+    sa, ca, sb, cb, sg, cg = np.sin(a), np.cos(a), np.sin(b), np.cos(b), np.sin(g), np.cos(g)
+    den = sg + S3 * cg
+    k = S3 * rb * sa * sb
+    n1 = ra + ra * cg + 2 * y * cg - 2 * x * sg + S3 * ra * sg
+    n2 = ra + ra * cg + S3 * ra * sg - y * cg + x * sg - S3 * y * sg - S3 * x * cg - k
+    n3 = ra + ra * cg + S3 * ra * sg - y * cg + x * sg + S3 * y * sg + S3 * x * cg + k
+    u4, w4 = z - rb * sb, ra - rb * cb + rb * sa * sb
+    u5, w5 = z + rb * sa * cb, ra - rb * ca
+    u6, w6 = z + rb * sb, ra - rb * cb - rb * sa * sb
+    q = np.empty((len(x), 6))
+    q[:, 0], q[:, 1], q[:, 2] = n1 / den, n2 / den, n3 / den
+    q4 = q[:, 3] = np.sqrt(u4 * u4 + w4 * w4)
+    q5 = q[:, 4] = np.sqrt(u5 * u5 + w5 * w5)
+    q6 = q[:, 5] = np.sqrt(u6 * u6 + w6 * w6)
+    if not jacobian:
+        return q
+    jac = np.zeros((len(x), 6, 6))
+    dden = cg - S3 * sg  # d den / d gamma
+    dk_a, dk_b = S3 * rb * ca * sb, S3 * rb * sa * cb
+    inv, inv2 = 1.0 / den, 1.0 / (den * den)
+    # d n_i / d(x, y, gamma) and the quotient rule for gamma
+    dn1 = (-2 * sg, 2 * cg, -ra * sg - 2 * y * sg - 2 * x * cg + S3 * ra * cg)
+    dn2 = (sg - S3 * cg, -cg - S3 * sg,
+           -ra * sg + S3 * ra * cg + y * sg + x * cg - S3 * y * cg + S3 * x * sg)
+    dn3 = (sg + S3 * cg, -cg + S3 * sg,
+           -ra * sg + S3 * ra * cg + y * sg + x * cg + S3 * y * cg - S3 * x * sg)
+    for i, (n, dn, sign) in enumerate(((n1, dn1, 0.0), (n2, dn2, -1.0), (n3, dn3, 1.0))):
+        jac[:, i, 0], jac[:, i, 1] = dn[0] * inv, dn[1] * inv
+        if sign:
+            jac[:, i, 3], jac[:, i, 4] = sign * dk_a * inv, sign * dk_b * inv
+        jac[:, i, 5] = (dn[2] * den - n * dden) * inv2
+    # q = sqrt(u^2 + w^2): dq = (u du + w dw) / q
+    for i, (qq, u, w, du, dw) in enumerate((
+            (q4, u4, w4, (0, -rb * cb), (rb * ca * sb, rb * sb + rb * sa * cb)),
+            (q5, u5, w5, (rb * ca * cb, -rb * sa * sb), (rb * sa, 0)),
+            (q6, u6, w6, (0, rb * cb), (-rb * ca * sb, rb * sb - rb * sa * cb))), start=3):
+        iq = 1.0 / qq
+        jac[:, i, 2] = u * iq
+        jac[:, i, 3] = (u * du[0] + w * dw[0]) * iq
+        jac[:, i, 4] = (u * du[1] + w * dw[1]) * iq
+    return q, jac
+
+
+# ------------------------------------------------------------------ stewart
+def stewart_corners(ra=200.0, rb=200.0, ta=0.125, tb=0.125):
+    """Base joints A_k and platform joints B_k (platform frame): pairs at theta_j +- phi_a,
+    theta_j + 60 deg +- phi_b, theta_j = -30, 90, 210 deg (the module's layout)."""
+    theta = np.radians([-30.0, 90.0, 210.0])
+    pa, pb = 2 * np.arctan(ta), 2 * np.arctan(tb)
+    a_ang, b_ang = [], []
+    for j in range(3):
+        mid = theta[j] + np.radians(60.0)
+        a_ang += [theta[j] + pa, theta[(j + 1) % 3] - pa]
+        b_ang += [mid - pb, mid + pb]
+
+    def ring(r, ang):
+        ang = np.array(ang)
+        return np.stack([r * np.cos(ang), r * np.sin(ang), np.zeros_like(ang)], axis=1)
+
+    return ring(ra, a_ang), ring(rb, b_ang)
+
+
+def stewart(p, jacobian=False, corners=None):
+    """q_k = |t + R b_k - a_k|, R = Rz(gamma) Ry(beta) Rx(alpha); dq_k/dX = v_k^T dv_k/dX
+    / q_k."""
+    base, plat = corners or stewart_corners()
+    x, y, z, a, b, g = (p[:, i] for i in range(6))
+    sa, ca, sb, cb, sg, cg = np.sin(a), np.cos(a), np.sin(b), np.cos(b), np.sin(g), np.cos(g)
+    # rows of R (each an array over poses): R = Rz Ry Rx
+    r = ((cg * cb, cg * sb * sa - sg * ca, cg * sb * ca + sg * sa),
+         (sg * cb, sg * sb * sa + cg * ca, sg * sb * ca - cg * sa),
+         (-sb, cb * sa, cb * ca))
+    q = np.empty((len(x), 6))
+    jac = np.empty((len(x), 6, 6)) if jacobian else None
+    if jacobian:  # dR/d alpha, d beta, d gamma: the columns that multiply b_x and b_y
+        d = {"a": ((0.0, cg * sb * ca + sg * sa), (0.0, sg * sb * ca - cg * sa), (0.0, cb * ca)),
+             "b": ((-cg * sb, cg * cb * sa), (-sg * sb, sg * cb * sa), (-cb, -sb * sa)),
+             "g": ((-sg * cb, -(sg * sb * sa + cg * ca)), (cg * cb, cg * sb * sa - sg * ca),
+                   (0.0, 0.0))}
+    for k, ((ax, ay, _), (bx, by, _)) in enumerate(zip(base, plat)):
+        vx = x + r[0][0] * bx + r[0][1] * by - ax
+        vy = y + r[1][0] * bx + r[1][1] * by - ay
+        vz = z + r[2][0] * bx + r[2][1] * by
+        qk = q[:, k] = np.sqrt(vx * vx + vy * vy + vz * vz)
+        if jacobian:
+            inv = 1.0 / qk
+            ux, uy, uz = vx * inv, vy * inv, vz * inv
+            jac[:, k, 0], jac[:, k, 1], jac[:, k, 2] = ux, uy, uz
+            for col, key in ((3, "a"), (4, "b"), (5, "g")):
+                (x0, y0), (x1, y1), (x2, y2) = d[key]
+                jac[:, k, col] = (ux * (x0 * bx + y0 * by) + uy * (x1 * bx + y1 * by)
+                                  + uz * (x2 * bx + y2 * by))
+    return q if not jacobian else (q, jac)
+
+
+# ------------------------------------------------------------------ pro_hep_lct (004)
+def _two_link(px, py, l1, l2, elbow):
+    """theta1 of a two-link chain from its base to (px, py), the elbow on side ``elbow``
+    (+-1), and d theta1 / d(px, py)."""
+    r2 = px * px + py * py
+    c2 = (r2 - l1 * l1 - l2 * l2) / (2 * l1 * l2)
+    s2 = elbow * np.sqrt(1 - c2 * c2)
+    k1, k2 = l1 + l2 * c2, l2 * s2
+    th1 = np.arctan2(py, px) - np.arctan2(k2, k1)
+    # the inverse of the chain's Jacobian: d theta1 = (c12 dpx + s12 dpy) / (l1 s2)
+    c12, s12 = np.cos(th1 + np.arctan2(s2, c2)), np.sin(th1 + np.arctan2(s2, c2))
+    return th1, c12 / (l1 * s2), s12 / (l1 * s2)
+
+
+def pro_hep_lct(p, g, signs=(1.0, 1.0, -1.0), jacobian=False):
+    """(t1, w1, q4, q5) from (Xu, Yu, Xd, Yd): the lower chains as two-link chains to Pd
+    (chain 1 from the origin, +d/2; chain 2 from (0, lq4d), -d/2), t = tan(theta/2); the
+    upper chain q5 = Yu, q4 = q5 - s sqrt(ld4^2 - (Xu - lq5)^2).  ``signs``: the elbow sides
+    of the two lower chains and s of the upper one (the working mode)."""
+    xu, yu, xd, yd = (p[:, i] for i in range(4))
+    th1, d1x, d1y = _two_link(xd, yd - g["d"] / 2, g["l1"], g["l2"], signs[0])
+    th3, d3x, d3y = _two_link(xd, yd - g["lq4d"] + g["d"] / 2, g["l3"], g["l4"], signs[1])
+    t1, w1 = np.tan(th1 / 2), np.tan(th3 / 2)
+    root = np.sqrt(g["ld4"] ** 2 - (xu - g["lq5"]) ** 2)
+    q4 = yu - signs[2] * root
+    q = np.stack([t1, w1, q4, yu], axis=-1)
+    if not jacobian:
+        return q
+    jac = np.zeros((len(xu), 4, 4))
+    h1, h3 = (1 + t1 * t1) / 2, (1 + w1 * w1) / 2  # dt = (1 + t^2)/2 dtheta
+    jac[:, 0, 2], jac[:, 0, 3] = h1 * d1x, h1 * d1y
+    jac[:, 1, 2], jac[:, 1, 3] = h3 * d3x, h3 * d3y
+    jac[:, 2, 0], jac[:, 2, 1] = signs[2] * (xu - g["lq5"]) / root, 1.0
+    jac[:, 3, 1] = 1.0
+    return q, jac
