@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 114a828b5405507afa9160ac8dbbbee0ad0ba2f6593e3728b2c46224164b7221
+ * Derivation hash: 4b26276bc24729aedbe13d187ee020d6926618ab175021e7470a71b1ab39a094
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "114a828b5405507afa9160ac8dbbbee0ad0ba2f6593e3728b2c46224164b7221";
+const char bonered_derivation_hash[] = "4b26276bc24729aedbe13d187ee020d6926618ab175021e7470a71b1ab39a094";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

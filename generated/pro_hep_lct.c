@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2aed2fd5dc659dbf49b24bf7ad2ecb789c1ffcee0d69c868b7d19af3ea470597
+ * Derivation hash: 009152e79fc28bb0825e3e5d9488ec5f62054b03e1eb63eb6bc82e4a6cfc9623
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "2aed2fd5dc659dbf49b24bf7ad2ecb789c1ffcee0d69c868b7d19af3ea470597";
+const char bonered_derivation_hash[] = "009152e79fc28bb0825e3e5d9488ec5f62054b03e1eb63eb6bc82e4a6cfc9623";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9716516f09f5154a22ce168f1e2b6cfe0c1ff4141bfac75dfe1872183893b955
+ * Derivation hash: 1cfdefbb267a88ee6aa85faafffe1615c03c5e599d4c8f0ea1176c507926cb04
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "9716516f09f5154a22ce168f1e2b6cfe0c1ff4141bfac75dfe1872183893b955";
+const char bonered_derivation_hash[] = "1cfdefbb267a88ee6aa85faafffe1615c03c5e599d4c8f0ea1176c507926cb04";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

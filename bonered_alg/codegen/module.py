@@ -72,6 +72,9 @@ class IKModuleSpec:
     home: tuple | None = None
     physical_branch: tuple = ()
     link_constants: dict | None = None
+    # IK steps of distance legs in their geometric form (joint -> sphere_leg.CompactSphere),
+    # proved equal to the step's generator: the kernels evaluate these, not the expansions
+    compact: dict | None = None
 
 
 def _literal(value) -> str:
@@ -178,14 +181,18 @@ def _rps_with_constants(rps: RPSSystem, c: dict) -> RPSSystem:
 
 
 def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
-                  par: Sequence[sp.Symbol], sub: dict,
-                  c: bool = False) -> tuple[list[Kernel], list[str], list]:
-    """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows."""
+                  par: Sequence[sp.Symbol], sub: dict, c: bool = False,
+                  compact: dict | None = None) -> tuple[list[Kernel], list[str], list]:
+    """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows.
+    A step in ``compact`` (a distance leg's geometric form) is evaluated in that form."""
     kernels, rows, mode_bits = [], [], []
     solved: list[sp.Symbol] = []
     bit = 0
     for k, st in enumerate(steps):
         coeffs = [sp.sympify(c).subs(sub) for c in (st.A, st.B, st.C)]
+        form = (compact or {}).get(st.joint)
+        if form is not None and st.degree == 2 and coeffs[1] == 0:
+            coeffs = [form.scale * form.rotation, sp.Integer(0), -4 * form.scale * form.dual]
         kern = kernel(f"_{prefix}{k}_{st.joint}", [*inputs, *solved, *par], coeffs,
                       f"Coefficients (A, B, C) of the generator solved for {st.joint} "
                       f"(from {st.source}).", c=c)
@@ -220,7 +227,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     kernels = [kernel("_study", [*spec.pose, *par], [sub[y] for y in study],
                       "Study coordinates STUDY_POSE of the pose (POSE).", c=True)]
     step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {},
-                                                       c=True)
+                                                       c=True, compact=spec.compact)
     kernels += step_kernels
     bit = len(mode_bits)
     fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
@@ -245,7 +252,9 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
             "_fk_newton", [*spec.fk_unknowns, *spec.joints, *par],
             list(system) + list(system.jacobian(sp.Matrix(list(spec.fk_unknowns)))),
             "Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major)."))
-    gens = [sp.expand(st.generator) for st in spec.steps]
+    compact = spec.compact or {}
+    gens = [compact[st.joint].generator() if st.joint in compact else sp.expand(st.generator)
+            for st in spec.steps]
     args = [*spec.pose, *spec.joints, *par]
     g_pose = [g.subs(sub) for g in gens]
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
@@ -449,9 +458,33 @@ def module_source(d, generator: str):
         link_legs=[(c.base, leg) for c in m.actuated_closures for leg in c.legs],
         link_constants=d.constants,
         home=tuple(m.home) if m.home else None,
-        physical_branch=tuple((b.joint, b.declared) for b in d.branches))
+        physical_branch=tuple((b.joint, b.declared) for b in d.branches),
+        compact=compact_steps(d))
     source, ops, c_source = write_ik_module(spec)
     return GeneratedModule(m.name, source, frozen_map(ops), c_source=c_source)
+
+
+def compact_steps(d) -> dict:
+    """The IK steps that a distance leg's generator solves, in the geometric form of
+    :func:`..elimination.sphere_leg.compact_sphere` (proved equal to the generator there):
+    joint -> CompactSphere.  Steps of other legs are evaluated as expanded."""
+    from ..elimination import sphere_leg
+    from ..solvers.legs import DistanceLeg
+
+    consts = dict(d.constants or {})
+    out = {}
+    for st in d.steps:
+        if st.degree != 2:
+            continue
+        leg = next((r for r in d.legs if f"{r.closure.point}/{r.leg.name}" == st.source
+                    and r.method == DistanceLeg.name), None)
+        dl = sphere_leg.recognize(leg.leg) if leg is not None else None
+        if dl is None or dl.stroke != st.joint:
+            continue
+        form = sphere_leg.compact_sphere(dl, tuple(leg.closure.platform), st.generator, consts)
+        if form is not None:
+            out[st.joint] = form
+    return out
 
 
 def _passive_kernels(spec, study, par, kernels):
