@@ -79,12 +79,26 @@ def info(name: str) -> str:
                  for k, v in module.PARAMETERS.items()),
              "  limits      " + (", ".join(str(lim[0]) for lim in module.LIMITS)
                                  if getattr(module, "LIMITS", ()) else "none declared"),
+             "  fast path   " + _fast_path_state(module),
+             "  per pose    " + ", ".join(f"{f} {n} operations" for f, n in getattr(
+                 module, "FUNCTION_OPERATIONS", {}).items()),
              "  functions   " + ", ".join(sorted(
                  n for n, v in vars(module).items() if callable(v) and not n.startswith("_")
                  and getattr(v, "__module__", None) == module.__name__)),
              "  status codes"]
     lines += [f"    {code:2d} {text}" for code, text in sorted(module.STATUS.items())]
     return "\n".join(line for line in lines if line)
+
+
+def _fast_path_state(module) -> str:
+    """Whether the module's compiled fast path is built (and where), or why not."""
+    fast = getattr(getattr(module, "_MODEL", None), "fast", None)
+    if fast is None:
+        return "not available (no generated .c beside the module)"
+    lib = fast.library()
+    if lib is None:
+        return f"not available: {fast.reason}"
+    return f"compiled ({getattr(lib, '_name', 'loaded')})"
 
 
 def report(root: Path, names: list[str]) -> int:

@@ -10,7 +10,7 @@ trap 'rm -rf "$tmp"' EXIT
 $PY -m venv "$tmp/venv"
 "$tmp/venv/bin/python" -m pip install -q "$tmp"/wheel/*.whl
 cd "$tmp"
-"$tmp/venv/bin/python" - <<'PY'
+BONERED_ALG_CACHE="$tmp/cache" "$tmp/venv/bin/python" - <<'PY'
 import importlib, pkgutil, sys
 import bonered_alg
 names = sorted(m.name for m in pkgutil.walk_packages(bonered_alg.__path__, "bonered_alg."))
@@ -21,4 +21,9 @@ assert not any(p.startswith("/work") for p in bonered_alg.__path__), bonered_alg
 from bonered_alg.generated import planar_tripod as m
 print(f"wheel: {len(names)} modules import from {bonered_alg.__path__[0]}; ik at home:",
       m.ik([0.0, 0.0, 200.0, 0.0, 0.0, 0.0]).round(3).tolist())
+# the compiled fast path builds from the installed wheel's C files (package data)
+assert m._MODEL.fast.library() is not None, m._MODEL.fast.reason
+assert abs(m.ik([0.0, 0.0, 200.0, 0.0, 0.0, 0.0], fast=True)
+           - m.ik([0.0, 0.0, 200.0, 0.0, 0.0, 0.0], fast=False)).max() < 1e-9
+print("wheel: compiled fast path", m._MODEL.fast.library()._name)
 PY

@@ -42,6 +42,8 @@ def test_info_describes_the_generated_module(capsys):
     for code, meaning in m.STATUS.items():
         assert f"{code:2d} {meaning}" in text
     assert "jacobian" in text and "ik_status" in text
+    assert "fast path   compiled (" in text and ".so)" in text
+    assert f"per pose    ik {m.FUNCTION_OPERATIONS['ik']} operations" in text
 
 
 def test_default_root_is_the_project_not_the_current_directory(tmp_path, monkeypatch):
