@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 009152e79fc28bb0825e3e5d9488ec5f62054b03e1eb63eb6bc82e4a6cfc9623
+ * Derivation hash: 900cdb58fdec2075376df14d4976c15da433e2d77639c5f2aaa7862303d50f30
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "009152e79fc28bb0825e3e5d9488ec5f62054b03e1eb63eb6bc82e4a6cfc9623";
+const char bonered_derivation_hash[] = "900cdb58fdec2075376df14d4976c15da433e2d77639c5f2aaa7862303d50f30";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -120,14 +120,22 @@ static void solve_one(const double *restrict p, const double *restrict par, int 
     int status = bf_all_finite(s, 4) ? BF_OK : BF_INVALID_INPUT;
     int failed = 0;
     (void)mode;
-    _step0_q5(s[0], s[1], s[2], s[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-    r[0] = bf_linear(c[1], c[2], &status, &failed);
-    _step1_q4(s[0], s[1], s[2], s[3], r[0], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-    r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
-    _step2_t1(s[0], s[1], s[2], s[3], r[0], r[1], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-    r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
-    _step3_w1(s[0], s[1], s[2], s[3], r[0], r[1], r[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-    r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    if (failed) { r[0] = NAN; } else {
+        _step0_q5(s[0], s[1], s[2], s[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        r[0] = bf_linear(c[1], c[2], &status, &failed);
+    }
+    if (failed) { r[1] = NAN; } else {
+        _step1_q4(s[0], s[1], s[2], s[3], r[0], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+    }
+    if (failed) { r[2] = NAN; } else {
+        _step2_t1(s[0], s[1], s[2], s[3], r[0], r[1], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+    }
+    if (failed) { r[3] = NAN; } else {
+        _step3_w1(s[0], s[1], s[2], s[3], r[0], r[1], r[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    }
     q[3] = failed ? NAN : r[0];
     q[2] = failed ? NAN : r[1];
     q[0] = failed ? NAN : r[2];

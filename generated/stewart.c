@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8b3ba171b600c2b4468e67277b1da34d088dc734a894dc70e54b88de0050555b
+ * Derivation hash: 8f022abdc6021760005d2ad738f011303c9e6d38351d8db132526c6cd24537b4
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "8b3ba171b600c2b4468e67277b1da34d088dc734a894dc70e54b88de0050555b";
+const char bonered_derivation_hash[] = "8f022abdc6021760005d2ad738f011303c9e6d38351d8db132526c6cd24537b4";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -905,18 +905,30 @@ static void solve_one(const double *restrict p, const double *restrict par, int 
     int status = bf_all_finite(s, 7) ? BF_OK : BF_INVALID_INPUT;
     int failed = 0;
     (void)mode;
-    _step0_q2(s[0], s[1], s[2], s[3], s[4], s[5], s[6], par[0], par[1], par[2], par[3], c);
-    r[0] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
-    _step1_q5(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], par[0], par[1], par[2], par[3], c);
-    r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
-    _step2_q1(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], par[0], par[1], par[2], par[3], c);
-    r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
-    _step3_q4(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], par[0], par[1], par[2], par[3], c);
-    r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 3) & 1, &status, &failed);
-    _step4_q3(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], r[3], par[0], par[1], par[2], par[3], c);
-    r[4] = bf_quadratic(c[0], c[1], c[2], (mode >> 4) & 1, &status, &failed);
-    _step5_q6(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], r[3], r[4], par[0], par[1], par[2], par[3], c);
-    r[5] = bf_quadratic(c[0], c[1], c[2], (mode >> 5) & 1, &status, &failed);
+    if (failed) { r[0] = NAN; } else {
+        _step0_q2(s[0], s[1], s[2], s[3], s[4], s[5], s[6], par[0], par[1], par[2], par[3], c);
+        r[0] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+    }
+    if (failed) { r[1] = NAN; } else {
+        _step1_q5(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], par[0], par[1], par[2], par[3], c);
+        r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+    }
+    if (failed) { r[2] = NAN; } else {
+        _step2_q1(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], par[0], par[1], par[2], par[3], c);
+        r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    }
+    if (failed) { r[3] = NAN; } else {
+        _step3_q4(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], par[0], par[1], par[2], par[3], c);
+        r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 3) & 1, &status, &failed);
+    }
+    if (failed) { r[4] = NAN; } else {
+        _step4_q3(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], r[3], par[0], par[1], par[2], par[3], c);
+        r[4] = bf_quadratic(c[0], c[1], c[2], (mode >> 4) & 1, &status, &failed);
+    }
+    if (failed) { r[5] = NAN; } else {
+        _step5_q6(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], r[3], r[4], par[0], par[1], par[2], par[3], c);
+        r[5] = bf_quadratic(c[0], c[1], c[2], (mode >> 5) & 1, &status, &failed);
+    }
     q[1] = failed ? NAN : r[0];
     q[4] = failed ? NAN : r[1];
     q[0] = failed ? NAN : r[2];
@@ -925,7 +937,7 @@ static void solve_one(const double *restrict p, const double *restrict par, int 
     q[5] = failed ? NAN : r[5];
     if (!bf_all_finite(p, 6))
         status = BF_INVALID_INPUT;
-    if (limits) {
+    if (limits && bf_all_finite(q, 6)) {
         double v[18];
         _limit_values(p[0], p[1], p[2], p[3], p[4], p[5], q[0], q[1], q[2], q[3], q[4], q[5], par[0], par[1], par[2], par[3], v);
         int stroke = 0, passive = 0;

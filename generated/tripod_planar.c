@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1cfdefbb267a88ee6aa85faafffe1615c03c5e599d4c8f0ea1176c507926cb04
+ * Derivation hash: 36822efa180df39ecdd3b0b1f60f92dfd04018c24bd28fbc9c2b6e626baa7eed
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "1cfdefbb267a88ee6aa85faafffe1615c03c5e599d4c8f0ea1176c507926cb04";
+const char bonered_derivation_hash[] = "36822efa180df39ecdd3b0b1f60f92dfd04018c24bd28fbc9c2b6e626baa7eed";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -739,18 +739,30 @@ static void solve_one(const double *restrict p, const double *restrict par, int 
     int status = bf_all_finite(s, 10) ? BF_OK : BF_INVALID_INPUT;
     int failed = 0;
     (void)mode;
-    _step0_q4(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], par[0], par[1], par[2], c);
-    r[0] = bf_linear(c[1], c[2], &status, &failed);
-    _step1_q5(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], par[0], par[1], par[2], c);
-    r[1] = bf_linear(c[1], c[2], &status, &failed);
-    _step2_q6(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], r[1], par[0], par[1], par[2], c);
-    r[2] = bf_linear(c[1], c[2], &status, &failed);
-    _step3_q2(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], r[1], r[2], par[0], par[1], par[2], c);
-    r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
-    _step4_q1(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], r[1], r[2], r[3], par[0], par[1], par[2], c);
-    r[4] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
-    _step5_q3(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], r[1], r[2], r[3], r[4], par[0], par[1], par[2], c);
-    r[5] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    if (failed) { r[0] = NAN; } else {
+        _step0_q4(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], par[0], par[1], par[2], c);
+        r[0] = bf_linear(c[1], c[2], &status, &failed);
+    }
+    if (failed) { r[1] = NAN; } else {
+        _step1_q5(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], par[0], par[1], par[2], c);
+        r[1] = bf_linear(c[1], c[2], &status, &failed);
+    }
+    if (failed) { r[2] = NAN; } else {
+        _step2_q6(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], r[1], par[0], par[1], par[2], c);
+        r[2] = bf_linear(c[1], c[2], &status, &failed);
+    }
+    if (failed) { r[3] = NAN; } else {
+        _step3_q2(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], r[1], r[2], par[0], par[1], par[2], c);
+        r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+    }
+    if (failed) { r[4] = NAN; } else {
+        _step4_q1(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], r[1], r[2], r[3], par[0], par[1], par[2], c);
+        r[4] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+    }
+    if (failed) { r[5] = NAN; } else {
+        _step5_q3(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], r[0], r[1], r[2], r[3], r[4], par[0], par[1], par[2], c);
+        r[5] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    }
     q[3] = failed ? NAN : r[0];
     q[4] = failed ? NAN : r[1];
     q[5] = failed ? NAN : r[2];
@@ -768,7 +780,7 @@ static void solve_one(const double *restrict p, const double *restrict par, int 
                 status = BF_INPUT_SINGULAR;
         }
     }
-    if (limits) {
+    if (limits && bf_all_finite(q, 6)) {
         double v[9];
         _limit_values(p[0], p[1], p[2], p[3], p[4], p[5], q[0], q[1], q[2], q[3], q[4], q[5], par[0], par[1], par[2], v);
         int stroke = 0, passive = 0;

@@ -143,3 +143,23 @@ def test_the_library_is_built_once_into_the_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("BONERED_ALG_CACHE", str(tmp_path / "other"))
     fp = compiled.FastPath.beside(*args)
     assert fp.library() is None and "no-such-compiler" in fp.reason
+
+
+def test_numpy_chunks_give_the_unchunked_answer():
+    """A batch larger than CHUNK (evaluated chunk by chunk, array parameters split alike)
+    equals the same poses evaluated in small batches, which are never chunked."""
+    from bonered_alg.runtime import model
+
+    m = _module("planar_tripod")
+    n = 2 * model.CHUNK + 5
+    poses = _poses("planar_tripod", n, seed=9).reshape(n, 1, 6)
+    ra = np.linspace(185.0, 195.0, n).reshape(n, 1)
+    q, J, s = m.ik_and_jacobian(poses, ra=ra, fast=False)
+    assert q.shape == (n, 1, 6) and J.shape == (n, 1, 6, 6) and s.shape == (n, 1)
+    step = 1000
+    for lo in range(0, n, step):
+        part = m.ik_and_jacobian(poses[lo:lo + step], ra=ra[lo:lo + step], fast=False)
+        assert np.array_equal(part[0], q[lo:lo + step], equal_nan=True)
+        assert np.array_equal(part[1], J[lo:lo + step], equal_nan=True)
+        assert np.array_equal(part[2], s[lo:lo + step])
+    assert np.array_equal(m.ik(poses, ra=ra, fast=False), q, equal_nan=True)

@@ -72,13 +72,18 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "    int failed = 0;",
         "    (void)mode;",
     ]
+    # once a step has failed the status is a failure code that no later step can change
+    # (backsubstitute: the first failure wins), and every joint is NaN: the later steps are
+    # skipped, which changes no result
     for k, (degree, kern, bit) in enumerate(steps):
-        body.append(f"    {_call(kern, s + [f'r[{j}]' for j in range(k)] + par, 'c')}")
+        body.append(f"    if (failed) {{ r[{k}] = NAN; }} else {{")
+        body.append(f"        {_call(kern, s + [f'r[{j}]' for j in range(k)] + par, 'c')}")
         if degree == 1:
-            body.append(f"    r[{k}] = bf_linear(c[1], c[2], &status, &failed);")
+            body.append(f"        r[{k}] = bf_linear(c[1], c[2], &status, &failed);")
         else:
-            body.append(f"    r[{k}] = bf_quadratic(c[0], c[1], c[2], (mode >> {bit}) & 1, "
-                        "&status, &failed);")
+            body.append(f"        r[{k}] = bf_quadratic(c[0], c[1], c[2], (mode >> {bit}) & 1,"
+                        " &status, &failed);")
+        body.append("    }")
     for k, j in enumerate(solve_index):
         body.append(f"    q[{j}] = failed ? NAN : r[{k}];")
     body.append(f"    if (!bf_all_finite(p, {npose}))")
@@ -96,9 +101,12 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
             "        }",
             "    }",
         ]
+    # with the joints NaN (all of them: the IK gives a configuration as a whole or not at
+    # all) no limit can change the result: a violation changes the status only with finite
+    # joints (model._limit_check), so the limit kernel is skipped
     if limits_kernel is not None:
         body += [
-            "    if (limits) {",
+            f"    if (limits && bf_all_finite(q, {nj})) {{",
             f"        double v[{limits_kernel.outputs}];",
             f"        {_call(limits_kernel, p + q + par, 'v')}",
             "        int stroke = 0, passive = 0;",
