@@ -11,6 +11,7 @@ dq/dX with X as in its POSE.
 from __future__ import annotations
 
 import numpy as np
+from independent_stewart import corners as stewart_corners  # tests/: the layout, once
 
 S3 = np.sqrt(3.0)
 
@@ -63,24 +64,6 @@ def planar_tripod(p, ra=190.0, rb=190.0, jacobian=False):
 
 
 # ------------------------------------------------------------------ stewart
-def stewart_corners(ra=200.0, rb=200.0, ta=0.125, tb=0.125):
-    """Base joints A_k and platform joints B_k (platform frame): pairs at theta_j +- phi_a,
-    theta_j + 60 deg +- phi_b, theta_j = -30, 90, 210 deg (the module's layout)."""
-    theta = np.radians([-30.0, 90.0, 210.0])
-    pa, pb = 2 * np.arctan(ta), 2 * np.arctan(tb)
-    a_ang, b_ang = [], []
-    for j in range(3):
-        mid = theta[j] + np.radians(60.0)
-        a_ang += [theta[j] + pa, theta[(j + 1) % 3] - pa]
-        b_ang += [mid - pb, mid + pb]
-
-    def ring(r, ang):
-        ang = np.array(ang)
-        return np.stack([r * np.cos(ang), r * np.sin(ang), np.zeros_like(ang)], axis=1)
-
-    return ring(ra, a_ang), ring(rb, b_ang)
-
-
 def stewart(p, jacobian=False, corners=None):
     """q_k = |t + R b_k - a_k|, R = Rz(gamma) Ry(beta) Rx(alpha); dq_k/dX = v_k^T dv_k/dX
     / q_k."""

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 900cdb58fdec2075376df14d4976c15da433e2d77639c5f2aaa7862303d50f30
+ * Derivation hash: d159c724d2316b63bc174962e201496a226e9bfc78d92d0ea5e02b4ab56f830a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "900cdb58fdec2075376df14d4976c15da433e2d77639c5f2aaa7862303d50f30";
+const char bonered_derivation_hash[] = "d159c724d2316b63bc174962e201496a226e9bfc78d92d0ea5e02b4ab56f830a";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8f022abdc6021760005d2ad738f011303c9e6d38351d8db132526c6cd24537b4
+ * Derivation hash: 3a72802726f126af1ba530b478facaf070267dc939858e043ecefed0dddeeb3d
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "8f022abdc6021760005d2ad738f011303c9e6d38351d8db132526c6cd24537b4";
+const char bonered_derivation_hash[] = "3a72802726f126af1ba530b478facaf070267dc939858e043ecefed0dddeeb3d";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 36822efa180df39ecdd3b0b1f60f92dfd04018c24bd28fbc9c2b6e626baa7eed
+ * Derivation hash: 6be14b20695638d8a9ae2ccd9787e97d99fd3c380fc86d86fc6da24f513315a2
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "36822efa180df39ecdd3b0b1f60f92dfd04018c24bd28fbc9c2b6e626baa7eed";
+const char bonered_derivation_hash[] = "6be14b20695638d8a9ae2ccd9787e97d99fd3c380fc86d86fc6da24f513315a2";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

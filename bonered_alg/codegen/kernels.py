@@ -50,21 +50,31 @@ class _Printer(NumPyPrinter):
         # integer powers stay integer (numpy's fast paths); x**2 becomes (x*x), parenthesized
         # because the printer gives a Pow the precedence of a power: unparenthesized,
         # a/x**2 would print as a/x*x
-        folded = _number(expr)
-        if folded is not None:
-            return folded
-        base, exp = expr.base, expr.exp
-        b = self.parenthesize(base, PRECEDENCE["Pow"], strict=False)
-        if exp.is_Integer and int(exp) == 1:
-            return b
-        if exp.is_Integer and 1 < int(exp) <= 3:
-            return "(" + "*".join([b] * int(exp)) + ")"
-        if exp.is_Integer and -3 <= int(exp) < 0:
-            # numpy.power with a negative exponent is several times slower than a division
-            return "(1.0/(" + "*".join([b] * -int(exp)) + "))"
-        if exp.is_Integer:
-            return f"{b}**{int(exp)}"
+        out = _small_power(self, expr)
+        if out is not None:
+            return out
+        if expr.exp.is_Integer:
+            base = self.parenthesize(expr.base, PRECEDENCE["Pow"], strict=False)
+            return f"{base}**{int(expr.exp)}"
         return super()._print_Pow(expr, rational=rational)
+
+
+def _small_power(printer, expr) -> str | None:
+    """What both printers write alike: a constant folded, ``x^k`` for ``|k| <= 3`` as a
+    product (numpy.power with a negative exponent is several times slower than a
+    division); None for any other power."""
+    folded = _number(expr)
+    if folded is not None:
+        return folded
+    base, exp = expr.base, expr.exp
+    b = printer.parenthesize(base, PRECEDENCE["Pow"], strict=False)
+    if exp.is_Integer and int(exp) == 1:
+        return b
+    if exp.is_Integer and 1 < int(exp) <= 3:
+        return "(" + "*".join([b] * int(exp)) + ")"
+    if exp.is_Integer and -3 <= int(exp) < 0:
+        return "(1.0/(" + "*".join([b] * -int(exp)) + "))"
+    return None
 
 
 class _CPrinter(C99CodePrinter):
@@ -84,17 +94,10 @@ class _CPrinter(C99CodePrinter):
         return _float_literal(float(expr))
 
     def _print_Pow(self, expr, rational=False):  # noqa: N802
-        folded = _number(expr)
-        if folded is not None:
-            return folded
+        out = _small_power(self, expr)
+        if out is not None:
+            return out
         base, exp = expr.base, expr.exp
-        b = self.parenthesize(base, PRECEDENCE["Pow"], strict=False)
-        if exp.is_Integer and int(exp) == 1:
-            return b
-        if exp.is_Integer and 1 < int(exp) <= 3:
-            return "(" + "*".join([b] * int(exp)) + ")"
-        if exp.is_Integer and -3 <= int(exp) < 0:
-            return "(1.0/(" + "*".join([b] * -int(exp)) + "))"
         if exp == sp.Rational(1, 2):
             return f"sqrt({self._print(base)})"
         if exp == sp.Rational(-1, 2):  # as numpy's printer writes it: no pow() call
