@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 243e6e13254fc5ab2be45270993c4b6b8c670d27af0d196ce21af1b3a59bc0a0
+ * Derivation hash: 3850938684ed31d63f23700b1cacef18c812935bdc2e45a2113bd51eecd2f0aa
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "243e6e13254fc5ab2be45270993c4b6b8c670d27af0d196ce21af1b3a59bc0a0";
+const char bonered_derivation_hash[] = "3850938684ed31d63f23700b1cacef18c812935bdc2e45a2113bd51eecd2f0aa";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

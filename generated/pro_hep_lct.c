@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d159c724d2316b63bc174962e201496a226e9bfc78d92d0ea5e02b4ab56f830a
+ * Derivation hash: 703375309a500b22bbb0710c659626e81104a157b43eb6e9005dfb5858cb6de6
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "d159c724d2316b63bc174962e201496a226e9bfc78d92d0ea5e02b4ab56f830a";
+const char bonered_derivation_hash[] = "703375309a500b22bbb0710c659626e81104a157b43eb6e9005dfb5858cb6de6";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

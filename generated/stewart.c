@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3a72802726f126af1ba530b478facaf070267dc939858e043ecefed0dddeeb3d
+ * Derivation hash: fd5bb3043de6ae1a7d99e314a264c2b8b9cc9cd1624d80e839126dc0d66b37fd
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "3a72802726f126af1ba530b478facaf070267dc939858e043ecefed0dddeeb3d";
+const char bonered_derivation_hash[] = "fd5bb3043de6ae1a7d99e314a264c2b8b9cc9cd1624d80e839126dc0d66b37fd";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -4,7 +4,7 @@ import numpy as np
 import sympy as sp
 
 from bonered_alg.codegen.kernels import kernel
-from bonered_alg.kinematics.ik_plan import _definite
+from bonered_alg.kinematics.ik_plan import _definite, plan
 
 
 def _run(k, *args):
@@ -34,3 +34,14 @@ def test_definite_leading_coefficients():
     assert not _definite(x**2 + y**2)  # vanishes at 0
     assert not _definite(1 - x**2)
     assert not _definite(1 + x * y)
+
+
+def test_the_planner_demotes_a_generator_that_vanishes_at_home():
+    """x q + x y is the cheaper generator for q, but every coefficient vanishes at the home
+    point x = 0 (q undetermined there); with the probe the planner takes q - y + x^2."""
+    x, y, q = sp.symbols("x y q", real=True)
+    gens = [("L", x * q + x * y), ("L", q - y + x**2 + y**3 * x**2)]
+    plain = plan(gens, [q], "test")
+    assert sp.expand(plain[0].generator - gens[0][1]) == 0
+    probed = plan(gens, [q], "test", probe={x: sp.Integer(0), y: sp.Integer(2)})
+    assert sp.expand(probed[0].generator - gens[1][1]) == 0

@@ -115,6 +115,12 @@ def test_a_parameter_needs_a_finite_value(value):
     (dict(home_joints={u: 1.0}), "home_joints .* needs the home pose"),
     (dict(home=(0.0, 0.0), home_joints={s: 1.0}), "home_joints names s, which is not an "
                                                    "actuated joint"),
+    (dict(angle_joints={s: "sigma"}), "angle_joints names s, which is not an actuated "
+                                      "joint"),
+    (dict(angle_joints={u: "theta"}), r"angle joint theta \(2 atan\(u\)\) must have the "
+                                      "unit 'rad', got '1'"),
+    (dict(angle_joints={u: "not a name"}, joint_units=("rad",)),
+     "angle_joints.u. must be an identifier"),
 ])
 def test_domains_and_the_physical_branch_are_checked(fields, message):
     with pytest.raises(MechanismDefinitionError, match=message):

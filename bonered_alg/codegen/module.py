@@ -7,6 +7,7 @@ runtime's (:mod:`bonered_alg.runtime`), which the module imports.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -63,6 +64,8 @@ class IKModuleSpec:
     end_effector: Sequence[sp.Expr] | None = None
     # helical couplings (chains.joints.HelicalCoupling) of the legs
     helical: Sequence = ()
+    # the joints' names for users (an angle joint's, whose algebra variable is tan(q/2))
+    public_joints: Sequence[str] = ()
     # unit of each passive joint variable
     passive_units: dict | None = None
     # legs of the actuated closures: (closure base body, leg) for the link poses, and the
@@ -353,6 +356,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     if helical:
         names.append("helical_residuals")
     names += [f["name"] for f in pose_functions + functions]
+    public = list(spec.public_joints or [str(q) for q in spec.joints])
     context = {
         "title": spec.title, "generator": spec.generator,
         "declaration": f"bonered_alg/mechanisms/{spec.name}.py", "source": spec.source,
@@ -363,7 +367,11 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
                         "note": p.description + "; " + p.source} for p in spec.parameters],
         "pose": [str(s) for s in spec.pose], "pose_units": list(spec.pose_units),
         "study_pose": [str(s) for s in study], "joints": [str(s) for s in spec.joints],
-        "joint_units": list(spec.joint_units), "modes": 2**bit, "mode_bits": tuple(mode_bits),
+        "public_joints": public, "joint_angles": tuple(
+            i for i, (q, name) in enumerate(zip(spec.joints, public)) if str(q) != name),
+        "joint_units": list(spec.joint_units), "modes": 2**bit,
+        "mode_bits": tuple((public[[str(q) for q in spec.joints].index(j)], b)
+                           for j, b in mode_bits),
         "fk_unknowns": [str(u) for u in spec.fk_unknowns],
         "rps_unknowns": [str(u) for u in spec.rps_unknowns],
         "rps_modes": DEGREE_BOUND if spec.rps else 0,
@@ -458,7 +466,10 @@ def module_source(d, generator: str):
         link_legs=[(c.base, leg) for c in m.actuated_closures for leg in c.legs],
         link_constants=d.constants,
         home=tuple(m.home) if m.home else None,
-        physical_branch=tuple((b.joint, b.declared) for b in d.branches),
+        physical_branch=tuple(
+            (m.public_joint(b.joint), 2 * math.atan(b.declared) if b.joint in m.angle_joints
+             else b.declared) for b in d.branches),
+        public_joints=tuple(m.public_joint(q) for q in m.joints),
         compact=compact_steps(d))
     source, ops, c_source = write_ik_module(spec)
     return GeneratedModule(m.name, source, frozen_map(ops), c_source=c_source)
@@ -511,8 +522,10 @@ def _passive_kernels(spec, study, par, kernels):
                     ok = False
                     break
                 kern = kernel(f"_passive_{rec.leg}_{st.variable}", args,
-                              [e for bc in cands for e in bc],
-                              f"Candidates (B, C) of B {st.variable} + C = 0, leg {rec.leg}.")
+                              [e for b, c in cands for e in (b, c, _term_scale(b, c))],
+                              f"Candidates (B, C, S) of B {st.variable} + C = 0, leg "
+                              f"{rec.leg}; S, the sum of the terms' magnitudes, says how far "
+                              "B is from zero relative to rounding.")
                 rows.append(("linear", kern, (len(solved),)))
                 solved.append(st.variable)
             elif isinstance(st, QuadraticStep):
@@ -546,6 +559,13 @@ def _passive_kernels(spec, study, par, kernels):
     return table, names, units, notes
 
 
+def _term_scale(*exprs) -> sp.Expr:
+    """The sum of the magnitudes of the terms of ``exprs`` (expanded): a candidate's scale,
+    against which its pivot is judged (a pivot below DET_RTOL of it is rounding)."""
+    terms = [t for e in exprs for t in sp.Add.make_args(sp.expand(e))]
+    return sp.Add(*[sp.Abs(t, evaluate=False) for t in terms]) if terms else sp.Integer(0)
+
+
 def _link_kernels(spec, study, par, passive_names, kernels):
     """One kernel per leg whose joints are all known: the Study point of the body after each
     moving joint (the partial products of the leg), in the frame of the body the leg's
@@ -554,7 +574,9 @@ def _link_kernels(spec, study, par, passive_names, kernels):
     from that leg) and each link's frame."""
     from ..algebra import study_symbolic as ss
 
-    known = set(spec.joints) | {sp.Symbol(n, real=True) for n in passive_names}
+    # the Study coordinates are inputs too (a leg may end in an offset along the
+    # platform's coordinates, e.g. a collar's position on a shaft)
+    known = set(spec.joints) | {sp.Symbol(n, real=True) for n in passive_names} | set(study)
     psyms = [sp.Symbol(n, real=True) for n in passive_names]
     rows, names, frames = [], [], []
     consts = spec.link_constants or {}

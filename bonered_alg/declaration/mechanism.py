@@ -131,6 +131,15 @@ class Mechanism:
     # physical branch: mode 0 of the IK is the root nearest each declared value
     home: tuple[float, ...] = ()
     home_joints: Mapping[sp.Symbol, float] = field(default_factory=dict)
+    # actuated revolute joints the generated functions take and return as angles: the
+    # algebra's tan-half-angle symbol -> the user's name, angle = 2 atan(symbol) in rad
+    # (home_joints gives their values as angles)
+    angle_joints: Mapping[sp.Symbol, str] = field(default_factory=dict)
+
+    def public_joint(self, q: sp.Symbol) -> str:
+        """The name users see for the actuated joint ``q`` (its angle's, for an angle
+        joint)."""
+        return self.angle_joints.get(q, str(q))
 
     # ------------------------------------------------------------- derived views
     @property
@@ -261,6 +270,7 @@ def validate(mech: Mechanism) -> None:
     for ref in (*((mech.checks,) if mech.checks else ()), *mech.studies):
         _check_module_reference(mech, ref, "verify" if ref == mech.checks else "run")
     _check_home(mech)
+    _check_angle_joints(mech)
     if mech.forward_kinematics and not isinstance(mech.forward_kinematics, str):
         _fail(mech, "forward_kinematics must be a string (why it is not generated) or ''")
 
@@ -283,6 +293,24 @@ def _check_home(mech: Mechanism) -> None:
                         f"{list(map(str, mech.joints))})")
         if not _finite_number(v):
             _fail(mech, f"home_joints[{q}] must be a finite number, got {v!r}")
+
+
+def _check_angle_joints(mech: Mechanism) -> None:
+    names = [str(q) for q in mech.joints]
+    for q, public in mech.angle_joints.items():
+        if q not in mech.joints:
+            _fail(mech, f"angle_joints names {q!r}, which is not an actuated joint (joints: "
+                        f"{names})")
+        if not isinstance(public, str) or not public.isidentifier():
+            _fail(mech, f"angle_joints[{q}] must be an identifier (the joint's name for "
+                        f"users), got {public!r}")
+        unit = mech.joint_units[mech.joints.index(q)]
+        if unit != "rad":
+            _fail(mech, f"angle joint {public} (2 atan({q})) must have the unit 'rad', got "
+                        f"{unit!r}")
+    public = [mech.public_joint(q) for q in mech.joints]
+    if len(set(public)) != len(public):
+        _fail(mech, f"the joints' public names {public} are not distinct")
 
 
 def _check_roles(mech: Mechanism) -> None:

@@ -11,6 +11,7 @@ root is negated, so that mode 0 reproduces the declared values.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
@@ -61,6 +62,21 @@ def orient(name: str, steps: Sequence[IKStep], to_study: Mapping, pose: Sequence
             out.append(st)
             continue
         disc = b * b - 4 * a * c
+        if st.joint in home_joints and a == 0 and b != 0:
+            # the leading coefficient vanishes at home: one root is -C/B, the other at
+            # infinity (a tan-half-angle at a half-turn).  The runtime's +sqrt root tends
+            # to the finite one where B > 0 (backsubstitution's stable form), so mode 0
+            # keeps the finite root, the nearer to any declared value, when the generator
+            # is oriented with B > 0 at home
+            finite = float(-c / b)
+            want = home_joints[st.joint]
+            negate = b < 0
+            roots = (finite, math.inf) if b > 0 else (math.inf, finite)
+            records.append(Branch(st.joint, float(want), roots, bool(negate)))
+            at[st.joint] = -c / b
+            out.append(replace(st, generator=-st.generator, A=-st.A, B=-st.B, C=-st.C)
+                       if negate else st)
+            continue
         if st.joint in home_joints and not (disc.is_real and disc >= 0 and a != 0):
             raise MechanismDefinitionError(
                 name, f"home_joints[{st.joint}]: at the home pose {tuple(home)} the quadratic "

@@ -40,12 +40,20 @@ class IKStep:
 
 
 def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
-         context: str, constants: dict | None = None) -> list[IKStep]:
+         context: str, constants: dict | None = None, probe: dict | None = None,
+         declared: dict | None = None) -> list[IKStep]:
     """Order of solution and the generator used for each joint (see module docstring).
 
     ``constants`` maps algebraic constants (``s3``) to their values for the test that a
-    leading coefficient cannot vanish."""
+    leading coefficient cannot vanish.  ``probe`` (numbers for the Study coordinates and
+    parameters at the declared home pose) demotes a generator that vanishes identically in
+    its joint there -- every coefficient zero, the joint undetermined at home (a
+    combination of other generators that degenerates on a special plane of the pose
+    space); the joints solved before it take their value at home, the root nearest
+    ``declared`` or the ``+sqrt`` one."""
     constants = constants or {}
+    probe = dict(probe) if probe else None
+    declared = declared or {}
     solved: list[sp.Symbol] = []
     steps: list[IKStep] = []
     remaining = list(joints)
@@ -67,7 +75,7 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
 
     free = [g.free_symbols & jset for _, g in generators]
     while remaining:
-        best = None
+        cands = []
         for q in remaining:
             for i, (src, g) in enumerate(generators):
                 if free[i] - set(solved) != {q}:
@@ -76,21 +84,64 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
                 if info is None:
                     continue
                 rank, ops, deg = info
-                cand = (rank, ops, str(q), src, q, g, deg)
-                if best is None or cand[:3] < best[:3]:
-                    best = cand
-        if best is None:
+                cands.append((rank, ops, str(q), i, src, q, g, deg))
+        if not cands:
             raise NotImplementedError(
                 f"{context}: no generator of degree 1 or 2 in any of "
                 f"{[str(q) for q in remaining]} once {[str(q) for q in solved]} are known")
-        _, _, _, src, q, g, deg = best
+        cands.sort(key=lambda c: c[:4])
+        best = cands[0]
+        if probe is not None:
+            best = next((c for c in cands if not _vanishes_at(c[6], c[5], probe)), best)
+        _, _, _, _, src, q, g, deg = best
         poly = sp.Poly(sp.expand(g), q)
         coeff = {m[0]: c for m, c in zip(poly.monoms(), poly.coeffs())}
         steps.append(IKStep(q, g, deg, *(_compact(coeff.get(k, sp.Integer(0)))
                                           for k in (2, 1, 0)), src))
+        if probe is not None:
+            value = joint_value_at(steps[-1], probe, declared.get(q))
+            if value is None:  # not real at home: no further probing
+                probe = None
+            else:
+                probe[q] = value
         solved.append(q)
         remaining.remove(q)
     return steps
+
+
+PROBE_DIGITS = 30
+
+
+def _vanishes_at(g: sp.Expr, q: sp.Symbol, probe: dict) -> bool:
+    """True when every coefficient of ``g`` in ``q`` is zero at ``probe`` (relative to
+    the size of its terms there, at PROBE_DIGITS digits)."""
+    at = {s: v for s, v in probe.items() if s != q}
+    if g.free_symbols - set(at) - {q}:
+        return False  # not decidable at the probe
+    terms = sp.Add.make_args(sp.expand(g))
+    size = sum(abs(sp.N(t.xreplace(at).xreplace({q: 1}), PROBE_DIGITS)) for t in terms)
+    if size == 0:
+        return True
+    poly = sp.Poly(sp.N(sp.expand(g).xreplace(at), PROBE_DIGITS), q)
+    return all(abs(c) <= sp.Float(10) ** (-20) * size for c in poly.coeffs())
+
+
+def joint_value_at(step: IKStep, probe: dict, declared) -> sp.Expr | None:
+    """The step's joint at ``probe``: its root nearest ``declared``, else the +sqrt one
+    (None when not real or not finite)."""
+    a, b, c = (sp.N(sp.sympify(x).xreplace(probe), PROBE_DIGITS)
+               for x in (step.A, step.B, step.C))
+    if step.degree == 1:
+        return None if b == 0 else -c / b
+    if a == 0:
+        return None if b == 0 else -c / b
+    disc = b * b - 4 * a * c
+    if not (disc.is_real and disc >= 0):
+        return None
+    roots = [(-b + sgn * sp.sqrt(disc)) / (2 * a) for sgn in (1, -1)]
+    if declared is None:
+        return roots[0]
+    return min(roots, key=lambda r: abs(float(r) - float(declared)))
 
 
 def _degree(g: sp.Expr, q: sp.Symbol) -> int:

@@ -107,8 +107,46 @@ def _vanishes(coefficients, points) -> bool:
     return True
 
 
+def _covering(cands, probe) -> tuple:
+    """The simplest MAX_CANDIDATES linear candidates ``(ops, B, C)``; where every one of
+    them has ``B = 0`` at the home configuration ``probe`` (numbers for the Study
+    coordinates, joints, parameters and the passive variables solved before: the home
+    pose often lies on a coordinate plane where combinations of generators degenerate),
+    also the simplest candidate that does not vanish there."""
+    chosen = list(cands[:MAX_CANDIDATES])
+    if probe is not None and all(_zero_at(c[1], probe) for c in chosen):
+        extra = next((c for c in cands if not _zero_at(c[1], probe)), None)
+        if extra is not None:
+            chosen.append(extra)
+    return tuple((b, c) for _, b, c in chosen)
+
+
+def _zero_at(expr, probe, digits: int = 30) -> bool:
+    """``expr`` vanishes at ``probe`` relative to the size of its terms there."""
+    expr = sp.expand(sp.sympify(expr))
+    if expr.free_symbols - set(probe):
+        return False  # not decidable at the probe (e.g. a spherical centre's coordinates)
+    size = sum(abs(sp.N(t.xreplace(probe), digits)) for t in sp.Add.make_args(expr))
+    return size == 0 or abs(sp.N(expr.xreplace(probe), digits)) <= 1e-20 * size
+
+
+def _value_at(step, probe, digits: int = 30):
+    """A linear step's variable at ``probe``: ``-C/B`` of its candidate with the largest
+    relative pivot, as the runtime chooses (None where every pivot vanishes)."""
+    best, value = 0, None
+    for b, c in step.candidates:
+        bv = sp.N(sp.sympify(b).xreplace(probe), digits)
+        cv_ = sp.N(sp.sympify(c).xreplace(probe), digits)
+        if bv == 0 or not (bv.is_real and cv_.is_real):
+            continue
+        score = abs(bv) / (abs(bv) + abs(cv_))
+        if score > best:
+            best, value = score, -cv_ / bv
+    return value
+
+
 def _steps(basis, unknowns, context, points=(),
-           eliminated=None) -> tuple[LinearStep | QuadraticStep, ...]:
+           eliminated=None, probe=None) -> tuple[LinearStep | QuadraticStep, ...]:
     """The solve order and, per passive variable, its linear candidates in the basis (or,
     where there is none, the simplest quadratic); candidates that vanish on the leg's
     configurations (the exact sample ``points``) are dropped.  Where the basis has no usable
@@ -124,10 +162,14 @@ def _steps(basis, unknowns, context, points=(),
             best, quadratic = _best(None, remaining, points, bases)
         if best is not None:
             v, cands = best
-            steps.append(LinearStep(v, tuple((b, c) for _, b, c in cands[:MAX_CANDIDATES])))
+            steps.append(LinearStep(v, _covering(cands, probe)))
+            if probe is not None:
+                value = _value_at(steps[-1], probe)
+                probe = None if value is None else {**probe, v: value}
         elif quadratic is not None:
             _, v, coeffs = quadratic
             steps.append(QuadraticStep(v, coeffs))
+            probe = None  # the runtime's root choice is not followed here
         else:
             raise NotImplementedError(f"{context}: no generator of degree 1 or 2 in any of "
                                       f"{[str(v) for v in remaining]} once "
@@ -188,8 +230,10 @@ def _sample_points(mech, leg, variables, point_of, count=2, seed=20261202):
     return out
 
 
-def recover_leg(mech, closure, leg, algebra) -> LegRecovery:
-    """The recovery of ``leg``'s passive joints (see the module docstring)."""
+def recover_leg(mech, closure, leg, algebra, probe=None) -> LegRecovery:
+    """The recovery of ``leg``'s passive joints (see the module docstring); ``probe``, the
+    Study coordinates, joints and parameters at the home configuration (numbers), makes
+    sure the candidates do not all degenerate there."""
     passive = [s for s in mech.passive if s in leg.free_symbols]
     context = f"mechanism {mech.name!r}, leg {leg.name!r}: passive joints"
     consts = tuple(c for c in mech.constants)
@@ -254,7 +298,7 @@ def recover_leg(mech, closure, leg, algebra) -> LegRecovery:
                                      tuple(s for s in keep if s not in others))
             return algebra.eliminate(sub).generators
 
-        steps = _steps(basis, unknowns, context, points, eliminated)
+        steps = _steps(basis, unknowns, context, points, eliminated, probe)
     except (NotImplementedError, EngineTimeoutError) as exc:
         return LegRecovery(closure.name, leg.name, (), str(exc))
     if centre:
@@ -269,7 +313,7 @@ def _substituted(step, sub):
     return QuadraticStep(step.variable, tuple(c.xreplace(sub) for c in step.coefficients))
 
 
-def recover(mech, algebra) -> tuple[LegRecovery, ...]:
-    """Every leg of every actuated closure."""
-    return tuple(recover_leg(mech, closure, leg, algebra)
+def recover(mech, algebra, probe=None) -> tuple[LegRecovery, ...]:
+    """Every leg of every actuated closure (``probe``: see :func:`recover_leg`)."""
+    return tuple(recover_leg(mech, closure, leg, algebra, probe)
                  for closure in mech.actuated_closures for leg in closure.legs)

@@ -22,6 +22,7 @@ No stage reads another's side effects; mechanisms never import this module.
 from __future__ import annotations
 
 import importlib
+import math
 import time
 from dataclasses import replace
 from types import ModuleType
@@ -39,7 +40,7 @@ from ..declaration.mechanism import (
 )
 from ..errors import MechanismDefinitionError, NonClosingMechanismError
 from ..kinematics.branches import negate_rows, orient
-from ..kinematics.ik_plan import IKStep
+from ..kinematics.ik_plan import IKStep, joint_value_at
 from ..kinematics.ik_plan import plan as plan_steps
 from ..kinematics.passive import recover as recover_passive
 from ..kinematics.singularities import FactoredPolynomial, discriminant, factored, large_product
@@ -155,6 +156,36 @@ def _forward_matrix(closure, jo: sp.Matrix, pose: list) -> list[FactoredPolynomi
         "with the actuators locked)")]
 
 
+def _home_probe(mech: Mechanism) -> tuple[dict | None, dict]:
+    """The Study coordinates and parameters at the declared home pose (for the planner's
+    test that a generator does not vanish identically there), and the declared joint
+    values in the algebra's variables; no probe where the pose map needs the derivation."""
+    declared = {q: (math.tan(v / 2) if q in mech.angle_joints else v)
+                for q, v in mech.home_joints.items()}
+    if not mech.home or callable(mech.pose.to_study):
+        return None, declared
+    at = {s: sp.nsimplify(v) for s, v in zip(mech.pose.coordinates, mech.home)}
+    values = {p.symbol: sp.nsimplify(p.value) for p in mech.parameters}
+    values |= {c.symbol: c.value for c in mech.constants}
+    probe = {k: sp.sympify(v).xreplace(at).xreplace(values)
+             for k, v in mech.pose.to_study.items()}
+    return probe | values, declared
+
+
+def _joints_at(steps, probe, declared) -> dict | None:
+    """``probe`` with the joints at home (the declared roots, else the +sqrt ones), or
+    None where a step has no real finite root there."""
+    if probe is None:
+        return None
+    out = dict(probe)
+    for st in steps:
+        value = joint_value_at(st, out, declared.get(st.joint))
+        if value is None:
+            return None
+        out[st.joint] = value
+    return out
+
+
 def plan(d: Derivation, algebra: Algebra) -> Derivation:
     """Inverse kinematics, velocity model, singularity polynomials, forward kinematics."""
     mech = d.mechanism
@@ -163,8 +194,10 @@ def plan(d: Derivation, algebra: Algebra) -> Derivation:
     pool = [(f"{r.closure.point}/{r.leg.name}", g) for r in d.legs
             if not r.closure.driven for g in r.generators]
     pool += list(extra)
+    probe, declared = _home_probe(mech)
     steps = tuple(plan_steps(pool, mech.joints, f"mechanism {mech.name!r}: inverse "
-                             "kinematics", {c.symbol: c.value for c in mech.constants}))
+                             "kinematics", {c.symbol: c.value for c in mech.constants},
+                             probe, declared))
     velocity, sing = _velocity_and_singularities(mech, steps)
     timings = dict(d.timings)
     timings["ik plan, Jacobians, singularities"] = time.perf_counter() - t0
@@ -176,7 +209,7 @@ def plan(d: Derivation, algebra: Algebra) -> Derivation:
     timings["forward kinematics"] = time.perf_counter() - t1
     sing += tuple(f.singularity for f in fk if f.singularity is not None)
     t2 = time.perf_counter()
-    passive = recover_passive(mech, algebra)
+    passive = recover_passive(mech, algebra, _joints_at(steps, probe, declared))
     timings["passive-joint recovery"] = time.perf_counter() - t2
     return replace(d, steps=steps, extra_generators=extra, velocity=velocity,
                    singularities=sing, fk=fk, fk_note=fk_note, passive=passive,
@@ -278,8 +311,9 @@ def physical_branch(d: Derivation) -> Derivation:
     generators where needed, and the matching rows of Ji and Jo."""
     mech = d.mechanism
     values = {p.symbol: p.value for p in mech.parameters} | d.constants
+    declared = _home_probe(mech)[1]  # an angle joint's is its angle's tan-half
     steps, branches = orient(mech.name, d.steps, d.pose_to_study, mech.pose.coordinates,
-                             mech.home, mech.home_joints, values)
+                             mech.home, declared, values)
     flipped = {b.joint for b in branches if b.negated}
     velocity = tuple(
         replace(v, ji=negate_rows(v.ji, rows), jo=negate_rows(v.jo, rows))

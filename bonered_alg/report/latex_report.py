@@ -52,7 +52,10 @@ def _section_overview(record) -> list[str]:
         ("source", tex_escape(m.source)),
         ("closures, legs", f"{len(m.closures)} closure{'s' if len(m.closures) > 1 else ''} ("
          + ", ".join(tex_escape(c.name) for c in m.closures) + f"), {legs} legs"),
-        ("actuated joints", ", ".join(f"${latex(q)}$" for q in m.joints)),
+        ("actuated joints", ", ".join(
+            f"${latex(q)}$" if q not in m.angle_joints else
+            f"${latex(sp.Symbol(m.angle_joints[q]))} = 2\\arctan {latex(q)}$ [rad]"
+            for q in m.joints)),
         ("pose", ", ".join(f"${latex(c)}$ [{tex_escape(u)}]"
                            for c, u in zip(m.pose.coordinates, m.pose.units))),
         ("mobility", f"$M = {sum(c.mobility for c in counts)}$ (Kutzbach--Gr\\\"ubler, "

@@ -101,6 +101,39 @@ class Model:
     singularity_matrices: Mapping[str, tuple] = field(default_factory=dict)
     # the compiled IK, limits and Jacobian (runtime.compiled.FastPath), or None
     fast: object | None = None
+    # indices of the joints given to users as angles: the algebra solves t = tan(q/2), the
+    # public functions take and return q = 2 atan(t) (:meth:`public`, :meth:`algebraic`)
+    angles: tuple[int, ...] = ()
+
+    # ------------------------------------------------------------ angle joints
+    def public(self, q):
+        """Joints of the algebra (tan-half-angles where ``angles``) as the user's joints,
+        ``q = 2 atan(t)`` in (-pi, pi]; a new array when anything changes."""
+        if not self.angles or q is None:
+            return q
+        q = numpy.array(q, dtype=float, copy=True)
+        idx = list(self.angles)
+        q[..., idx] = 2.0 * numpy.arctan(q[..., idx])
+        return q
+
+    def algebraic(self, q):
+        """The user's joints as the algebra's: ``t = tan(q/2)`` for the angle joints."""
+        if not self.angles:
+            return q
+        q = numpy.array(q, dtype=float, copy=True)
+        idx = list(self.angles)
+        q[..., idx] = numpy.tan(0.5 * q[..., idx])
+        return q
+
+    def _public_jacobian(self, t, J):
+        """``dq/dX`` from ``dt/dX``: the rows of the angle joints times ``dq/dt =
+        2 / (1 + t^2)`` (``t`` the algebra's joints)."""
+        if not self.angles:
+            return J
+        idx = list(self.angles)
+        J = numpy.array(J, dtype=float, copy=True)
+        J[..., idx, :] *= (2.0 / (1.0 + t[..., idx] ** 2))[..., None]
+        return J
 
     # ------------------------------------------------------------ inverse kinematics
     def _fast_path(self, func, fast, par):
@@ -206,7 +239,7 @@ class Model:
 
     def ik(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik", pose, mode, limits, params)
-        return self.solve(pose, mode, par, False, limits, fast, "ik")[0]
+        return self.public(self.solve(pose, mode, par, False, limits, fast, "ik")[0])
 
     def ik_status(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik_status", pose, mode, limits, params)
@@ -214,11 +247,13 @@ class Model:
 
     def ik_and_status(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik_and_status", pose, mode, limits, params)
-        return self.solve(pose, mode, par, True, limits, fast, "ik_and_status")
+        q, status = self.solve(pose, mode, par, True, limits, fast, "ik_and_status")
+        return self.public(q), status
 
     def ik_all(self, pose, limits=True, params=None, fast=None):
         pose, _, par, limits = self._ik_args("ik_all", pose, 0, limits, params)
-        return numpy.stack([self.solve(pose, m, par, False, limits, fast, "ik_all")[0]
+        return numpy.stack([self.public(self.solve(pose, m, par, False, limits, fast,
+                                                   "ik_all")[0])
                             for m in range(self.modes)], axis=-2)
 
     # ------------------------------------------------------------ why a pose fails
@@ -331,7 +366,7 @@ class Model:
     def limit_values(self, pose, q, params=None):
         pose = check.pose(self, "limit_values", pose)
         shape = pose.shape[:-1]
-        q = check.joints(self, "limit_values", q, shape)
+        q = self.algebraic(check.joints(self, "limit_values", q, shape))
         par = check.parameters(self, "limit_values", params or {})
         if not self.limits:
             return {}
@@ -353,13 +388,17 @@ class Model:
 
     def input_jacobian(self, pose, q, params=None):
         pose = check.pose(self, "input_jacobian", pose)
-        q = check.joints(self, "input_jacobian", q, pose.shape[:-1])
-        return self._matrices(pose, q, check.parameters(self, "input_jacobian",
-                                                        params or {}))[0]
+        t = self.algebraic(check.joints(self, "input_jacobian", q, pose.shape[:-1]))
+        ji = self._matrices(pose, t, check.parameters(self, "input_jacobian",
+                                                      params or {}))[0]
+        if self.angles:  # dG/dq = dG/dt dt/dq, dt/dq = (1 + t^2) / 2
+            idx = list(self.angles)
+            ji[..., :, idx] *= ((1.0 + t[..., idx] ** 2) / 2.0)[..., None, :]
+        return ji
 
     def output_jacobian(self, pose, q, params=None):
         pose = check.pose(self, "output_jacobian", pose)
-        q = check.joints(self, "output_jacobian", q, pose.shape[:-1])
+        q = self.algebraic(check.joints(self, "output_jacobian", q, pose.shape[:-1]))
         return self._matrices(pose, q, check.parameters(self, "output_jacobian",
                                                         params or {}))[1]
 
@@ -388,8 +427,10 @@ class Model:
         compiled = self._fast_path(func, fast, par)
         if compiled is not None:
             q, status, J = compiled.solve(pose, par, mode, limits, True)
-            return q, J, status
-        return _chunked(pose, par, lambda p, pr: self._ik_jacobian(p, mode, pr, limits))
+        else:
+            q, J, status = _chunked(pose, par,
+                                    lambda p, pr: self._ik_jacobian(p, mode, pr, limits))
+        return self.public(q), self._public_jacobian(q, J), status
 
     def _ik_jacobian(self, pose, mode, par, limits):
         q, status = self._solve(pose, mode, par, True, limits)
@@ -411,7 +452,7 @@ class Model:
     def singularities(self, pose, q, params=None):
         pose = check.pose(self, "singularities", pose)
         shape = pose.shape[:-1]
-        q = check.joints(self, "singularities", q, shape)
+        q = self.algebraic(check.joints(self, "singularities", q, shape))
         par = check.parameters(self, "singularities", params or {})
         with numpy.errstate(all="ignore"):
             study = self.study(*columns(pose), *par)
@@ -509,7 +550,7 @@ class Model:
         return check.coordinates(self, func, q, self.joints, "joints")
 
     def fk_all(self, q, params=None, with_status=False, func="fk"):
-        q = self._fk_joints(func, q)
+        q = self.algebraic(self._fk_joints(func, q))
         par = check.parameters(self, func, params or {})
         return fk_solver.solve_all(self, q, par, with_status)
 
@@ -556,16 +597,18 @@ def _chunked(pose, par, fn):
 
 
 def linear_candidates(values):
-    """``v = -C/B`` from the candidate ``(B, C)`` pairs, per sample the one whose pivot is
-    largest relative to its generator (``|B| / (|B| + |C|)``)."""
-    bs, cs = values[0::2], values[1::2]
+    """``v = -C/B`` from the candidate ``(B, C, S)`` triples (``S`` the sum of the
+    magnitudes of the candidate's terms), per sample the one whose pivot is largest
+    relative to its scale (``|B| / S``); a pivot at rounding level (``|B| <= DET_RTOL S``,
+    the candidate degenerate there) is never taken: NaN where every candidate is."""
+    bs, cs, ss = values[0::3], values[1::3], values[2::3]
     best = numpy.full(numpy.shape(bs[0]), -1.0)
     out = numpy.full(numpy.shape(bs[0]), numpy.nan)
-    for b, c in zip(bs, cs):
+    for b, c, scale in zip(bs, cs, ss):
         with numpy.errstate(all="ignore"):
-            score = numpy.abs(b) / (numpy.abs(b) + numpy.abs(c))
-            score = numpy.where(numpy.isfinite(score), score, -1.0)
-            take = (score > best) & (b != 0)
+            score = numpy.abs(b) / scale
+            usable = numpy.isfinite(score) & (numpy.abs(b) > DET_RTOL * scale)
+            take = usable & (score > best)
             out = numpy.where(take, -c / b, out)
             best = numpy.where(take, score, best)
     return out

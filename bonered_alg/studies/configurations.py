@@ -76,9 +76,10 @@ def vanishing_configuration(gen, name: str, home: np.ndarray):
     return None if found is None else found[1:]
 
 
-def _trailing(d, leg) -> np.ndarray:
+def _trailing(d, leg, pose) -> np.ndarray:
     """The fixed offsets after a leg's last moving joint (to its closure's platform frame),
-    as a 4x4 transform at the default parameters."""
+    as a 4x4 transform at the default parameters and ``pose`` (an offset may depend on the
+    closure's coordinates, e.g. a collar's position along a shaft)."""
     import sympy as sp
 
     from ..algebra import study_symbolic as ss
@@ -87,6 +88,9 @@ def _trailing(d, leg) -> np.ndarray:
     factors = [f.study() for j in leg.joints[moving[-1] + 1:] for f in j.factors]
     point = ss.product(*factors) if factors else (1, 0, 0, 0, 0, 0, 0, 0)
     values = {p.symbol: p.value for p in d.mechanism.parameters} | d.constants
+    if any(sp.sympify(c).free_symbols - set(values) for c in point):
+        at = dict(zip(d.mechanism.pose.coordinates, map(float, pose))) | values
+        values |= {k: sp.sympify(v).subs(at) for k, v in d.pose_to_study.items()}
     num = np.array([float(sp.sympify(c).subs(values)) for c in point])
     return sn.transform_from_study(num)
 
@@ -112,7 +116,7 @@ def _legs(d, gen, pose):
             if not own or frame is None:
                 continue
             mats = [frame @ sn.transform_from_study(links[i]) for i in own]
-            frames.setdefault(closure.point, mats[-1] @ _trailing(d, leg))
+            frames.setdefault(closure.point, mats[-1] @ _trailing(d, leg, pose))
             out.append((closure.point, np.array([t[:3, 3] for t in mats])))
     return out
 
