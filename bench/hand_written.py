@@ -132,3 +132,102 @@ def pro_hep_lct(p, g, signs=(1.0, 1.0, -1.0), jacobian=False):
     jac[:, 2, 0], jac[:, 2, 1] = signs[2] * (xu - g["lq5"]) / root, 1.0
     jac[:, 3, 1] = 1.0
     return q, jac
+
+
+# ------------------------------------------------------------------ urrh_rcm (002)
+def _unit_rows(v):
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def urrh_rcm(p, g, jacobian=False):
+    """(alpha1, alpha2, beta1, beta2) from (theta1, theta2, d, gamma) by 002's vector
+    geometry: u of the virtual chain (eq. 5, 16), the limb planes (eq. 4: tan alpha1 =
+    -u_y/u_z, tan alpha2 = u_x/u_z), the triangles of eq. (12) at the collars d1 = d,
+    d2 = d - p gamma (eq. 11) on the physical elbows (beta1 = b11 - b12, beta2 = b22 - b21,
+    see the verification of eq. 12); with ``jacobian``, dq/dX as the inverse of eq. (18)'s
+    J_q (its two corrections: a12 negated, l_cd,i = u^T r_B - d_i)."""
+    t1, t2, d, gm = (p[:, i] for i in range(4))
+    s1, c1, s2, c2 = np.sin(t1), np.cos(t1), np.sin(t2), np.cos(t2)
+    u = np.stack([-s2, c2 * s1, -c2 * c1], axis=-1)
+    a1 = np.arctan(-u[:, 1] / u[:, 2])
+    a2 = np.arctan(u[:, 0] / u[:, 2])
+    out = [a1, a2]
+    for k, di, sign in ((1, d, 1.0), (2, d - g["p"] * gm, -1.0)):
+        loa, lab, lbc = g[f"loa{k}"], g[f"lab{k}"], g[f"lbc{k}"]
+        # |C - A|^2 with C = d u, A = -loa u_k: d^2 + loa^2 + 2 d loa u_k . u
+        ac2 = di * di + loa * loa + 2 * di * loa * u[:, k - 1]
+        ac = np.sqrt(ac2)
+        b_1 = np.arccos((loa * loa + ac2 - di * di) / (2 * loa * ac))
+        b_2 = np.arccos((lab * lab + ac2 - lbc * lbc) / (2 * lab * ac))
+        out.append(sign * (b_1 - b_2))
+    q = np.stack(out, axis=-1)
+    if not jacobian:
+        return q
+    return q, np.linalg.inv(_urrh_jq(u, q, d, d - g["p"] * gm, g))
+
+
+def _urrh_jq(u, q, d1, d2, g):
+    """002 Sect. 4.3's J_q, vectorized, with the two corrections of the verification."""
+    n = len(q)
+    x, y = np.array([1.0, 0, 0]), np.array([0, 1.0, 0])
+    ca, sa = np.cos(q[:, :2]), np.sin(q[:, :2])
+    n1 = np.stack([np.zeros(n), ca[:, 0], sa[:, 0]], axis=-1)
+    n2 = np.stack([ca[:, 1], np.zeros(n), -sa[:, 1]], axis=-1)
+    cb, sb = np.cos(q[:, 2:]), np.sin(q[:, 2:])
+    # B_i - A_i = l_ab Rx(a1) Ry(b1) x, l_ab Ry(a2) Rx(b2) y
+    ab1 = g["lab1"] * np.stack([cb[:, 0], -sa[:, 0] * -sb[:, 0], ca[:, 0] * -sb[:, 0]], -1)
+    ab2 = g["lab2"] * np.stack([sa[:, 1] * sb[:, 1], cb[:, 1], ca[:, 1] * sb[:, 1]], -1)
+    rb1, rb2 = ab1 - g["loa1"] * x, ab2 - g["loa2"] * y
+    cross = np.cross(n2, n1)
+    nn = np.linalg.norm(cross, axis=-1)
+
+    def proj(v):  # (I - u u^T) v
+        return v - np.sum(u * v, -1, keepdims=True) * u
+
+    a01 = -x[None, :] / np.sqrt(1 - u[:, :1] ** 2)
+    a11 = proj(np.cross(n2, np.cross(n1, np.broadcast_to(x, (n, 3))))) / nn[:, None]
+    a12 = -proj(np.cross(n1, np.cross(n2, np.broadcast_to(y, (n, 3))))) / nn[:, None]
+    dots = [np.sum(u * r, -1) for r in (rb1, rb2)]
+    lcd = [dot - di for di, dot in zip((d1, d2), dots)]  # -(the root of the collar)
+    a21, a22 = ((1 - dot / lc)[:, None] * r for dot, lc, r in zip(dots, lcd, (rb1, rb2)))
+    a31, a32 = ((1 - dot / lc)[:, None] * u + r / lc[:, None]
+                for dot, lc, r in zip(dots, lcd, (rb1, rb2)))
+    a41, a43 = np.cross(x, ab1), np.cross(n1, ab1)
+    a42, a44 = np.cross(y, ab2), np.cross(n2, ab2)
+
+    def dot(a, b):
+        return np.sum(a * b, -1)
+
+    p = g["p"]
+    j = np.zeros((n, 4, 4))
+    j[:, 0, 0] = 1.0
+    j[:, 1, 0], j[:, 1, 1] = dot(a01, a11), dot(a01, a12)
+    j[:, 2, 0] = dot(a21, a11) + dot(a31, a41)
+    j[:, 2, 1], j[:, 2, 2] = dot(a21, a12), dot(a31, a43)
+    j[:, 3, 0] = (dot(a21 - a22, a11) + dot(a31, a41)) / p
+    j[:, 3, 1] = (dot(a21 - a22, a12) - dot(a32, a42)) / p
+    j[:, 3, 2], j[:, 3, 3] = dot(a31, a43) / p, -dot(a32, a44) / p
+    return j
+
+
+def urrh_rcm_fk(q, g):
+    """Every pose of (alpha1, alpha2, beta1, beta2) by 002 eq. (6)-(9): u = n1 x n2 (towards
+    the collars), theta1 = atan2(u_y, -u_z), theta2 = -asin(u_x), both roots of eq. (8) per
+    limb: (..., 4 modes, 4)."""
+    a1, a2, b1, b2 = (q[:, i] for i in range(4))
+    n1 = np.stack([np.zeros_like(a1), np.cos(a1), np.sin(a1)], -1)
+    n2 = np.stack([np.cos(a2), np.zeros_like(a2), -np.sin(a2)], -1)
+    u = _unit_rows(np.cross(n1, n2))
+    th1, th2 = np.arctan2(u[:, 1], -u[:, 2]), -np.arcsin(u[:, 0])
+    rb1 = np.stack([-g["loa1"] + g["lab1"] * np.cos(b1), g["lab1"] * np.sin(a1) * np.sin(b1),
+                    -g["lab1"] * np.cos(a1) * np.sin(b1)], -1)
+    rb2 = np.stack([g["lab2"] * np.sin(a2) * np.sin(b2), -g["loa2"] + g["lab2"] * np.cos(b2),
+                    g["lab2"] * np.cos(a2) * np.sin(b2)], -1)
+    roots = []
+    for rb, lbc in ((rb1, g["lbc1"]), (rb2, g["lbc2"])):
+        along = np.sum(u * rb, -1)
+        sq = np.sqrt(lbc * lbc - (np.sum(rb * rb, -1) - along * along))
+        roots.append((along + sq, along - sq))
+    out = [np.stack([th1, th2, e1, (e1 - e2) / g["p"]], -1)
+           for e1 in roots[0] for e2 in roots[1]]
+    return np.stack(out, axis=-2)

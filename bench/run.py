@@ -442,6 +442,7 @@ def hand_written_benchmarks(n=1_000_000):
     from bonered_alg.generated import pro_hep_lct as ph
     from bonered_alg.generated import stewart as st
     from bonered_alg.generated import tripod_planar as tp
+    from bonered_alg.generated import urrh_rcm as ur
     from independent_pro_hep_lct import GEOMETRY as G
 
     rng = np.random.default_rng(15)
@@ -450,6 +451,7 @@ def hand_written_benchmarks(n=1_000_000):
                            rng.uniform(-0.15, 0.15, n), rng.uniform(-0.6, 0.6, n)])
     ph_poses = np.array(reachable_pro_hep_lct(n, rng))
     lifted = six + [0, 0, 10.0, 0, 0, 0]
+    ur_poses = reachable_urrh_rcm(n, rng)
     cases = {
         "planar_tripod": (pt, six, {}, lambda j: hw.planar_tripod(six, jacobian=j)),
         "stewart": (st, lifted, {}, lambda j: hw.stewart(lifted, jacobian=j)),
@@ -457,6 +459,8 @@ def hand_written_benchmarks(n=1_000_000):
                         lambda j: hw.pro_hep_lct(ph_poses, G, (1.0, -1.0, 1.0), jacobian=j)),
         "tripod_planar": (tp, tp.pose_from_paper_coordinates(six), {},
                           lambda j: paper_ik_tripod_planar(six) if not j else None),
+        "urrh_rcm": (ur, ur_poses, {},
+                     lambda j: hw.urrh_rcm(ur_poses, ur.PARAMETERS, jacobian=j)),
     }
     out = {"poses": n, "threads": compiled.threads()}
     for name, (m, poses, par, hand) in cases.items():
@@ -482,9 +486,31 @@ def hand_written_benchmarks(n=1_000_000):
                 row[f"{label}_ik_plus_jacobian_ratio_vs_hand_written"] = t_hand_j / t
                 row[f"{label}_max_rel_difference_jacobian"] = _max_rel(
                     m.ik_and_jacobian(poses, limits=False, fast=fast, **par)[1], ref)
+        if name == "urrh_rcm":  # forward kinematics, every assembly mode
+            q = ur.ik(poses, limits=False)[: n // 10]
+            t_hand_fk = median_time(lambda q=q: hw.urrh_rcm_fk(q, ur.PARAMETERS), 3)
+            t_fk = median_time(lambda q=q: ur.fk(q), 3)
+            row.update({"fk_configurations": len(q),
+                        "hand_written_fk_4_modes_per_s": len(q) / t_hand_fk,
+                        "generated_fk_8_modes_per_s": len(q) / t_fk,
+                        "fk_ratio_vs_hand_written": t_hand_fk / t_fk})
         out[name] = row
         print(name, row, flush=True)
     return out
+
+
+def reachable_urrh_rcm(n, rng):
+    """n poses of the +-30 deg workspace (002 Sect. 5.2) where mode 0 is real."""
+    from bonered_alg.generated import urrh_rcm as ur
+
+    out, have = [], 0
+    while have < n:
+        p = np.column_stack([rng.uniform(-0.45, 0.45, n), rng.uniform(-0.45, 0.45, n),
+                             rng.uniform(60, 90, n), rng.uniform(-1.5, 1.5, n)])
+        p = p[np.isfinite(ur.ik(p, limits=False, fast=False)).all(axis=-1)]
+        out.append(p)
+        have += len(p)
+    return np.concatenate(out)[:n]
 
 
 def _max_rel(a, b):

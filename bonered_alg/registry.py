@@ -14,6 +14,7 @@ MECHANISMS = {
     "planar_tripod": "bonered_alg.mechanisms.planar_tripod",
     "tripod_planar": "bonered_alg.mechanisms.tripod_planar",
     "stewart": "bonered_alg.mechanisms.stewart",
+    "urrh_rcm": "bonered_alg.mechanisms.urrh_rcm",
 }
 REGISTRY = tuple(MECHANISMS)
 

@@ -89,7 +89,7 @@ def test_pro_hep_lct_unreachable_lower_point_names_its_two_joints():
 
 
 @pytest.mark.parametrize("fast", [False, True], ids=["numpy", "compiled"])
-@pytest.mark.parametrize("name", ["planar_tripod", "pro_hep_lct", "stewart"])
+@pytest.mark.parametrize("name", ["planar_tripod", "pro_hep_lct", "stewart", "urrh_rcm"])
 def test_bad_arguments_are_clear_errors(name, fast):
     """The same errors on both paths: the numpy runtime and the compiled fast path."""
     import importlib
@@ -115,7 +115,8 @@ def test_bad_arguments_are_clear_errors(name, fast):
         m.ik(home, fast="yes")
 
 
-@pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar", "pro_hep_lct", "stewart"])
+@pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar", "pro_hep_lct", "stewart",
+                                  "urrh_rcm"])
 def test_mode_zero_is_the_declared_physical_branch(name):
     """At HOME, mode 0 reproduces PHYSICAL_BRANCH (the values the declaration gives)."""
     import importlib
