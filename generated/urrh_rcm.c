@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 90d0c0ed458addcee76aa66cd1f148c89f8bdfcbadf1a5cec9be557e75def1e7
+ * Derivation hash: cf63bf5b3913891217bb879c88ac1090ea18bb540162395726d1f2072011f9cf
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "90d0c0ed458addcee76aa66cd1f148c89f8bdfcbadf1a5cec9be557e75def1e7";
+const char bonered_derivation_hash[] = "cf63bf5b3913891217bb879c88ac1090ea18bb540162395726d1f2072011f9cf";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -187,15 +187,16 @@ MECHANISM = declare(
     singularity_notes={
         "det_Ji_shaft": "Input singularities, one factor per IK step: the pivot of alpha2's "
                         "quadratic vanishes where its two roots (alpha2 and the half-turn) "
-                        "merge, the shaft along limb 2's fixed axis u2 (boundary_a2); the "
+                        "merge, the shaft along limb 2's fixed axis u2 (boundary_a2; 002 "
+                        "Sect. 4.4's alpha1 = +-pi/2, Fig. 8a); the "
                         "pivots of beta1, beta2 vanish where crank A_iB_i and coupler B_iC_i "
                         "are aligned and the two elbows merge at the edge of limb i's reach "
                         "(boundary_b1, boundary_b2; the limb's analogue of 002 Fig. 8d).",
-        "det_Jo_shaft": "Output singularities: alpha2 = +-pi/2 (limb 2's plane is the xy-plane, "
-                        "the shaft lies along u1 and alpha1 no longer moves it, 002 Sect. 4.4, "
-                        "Fig. 8a-b), and one factor per limb where the coupler B_iC_i is "
-                        "perpendicular to the shaft: collar i slides along it with the joints "
-                        "locked (l_cd,i = 0, 002 Fig. 8c).",
+        "det_Jo_shaft": "Output singularities: one factor per limb where the coupler B_iC_i "
+                        "is perpendicular to the shaft, so collar i slides along it with the "
+                        "joints locked (l_cd,i = 0, 002 Fig. 8c). The first factor, dG/dw2 of "
+                        "alpha2's generator, vanishes at no real configuration (with the "
+                        "generator it forces tan^2(theta2/2) = -1).",
         "boundary_a2": "The shaft along u2 (u = +-y): limb 2's plane turns about the shaft "
                        "without moving it, and alpha2's two roots merge.",
         "boundary_b1": "|C1 - A1| = l_ab1 +- l_bc1: limb 1 stretched or folded, the edge of "

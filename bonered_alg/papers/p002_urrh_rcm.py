@@ -375,6 +375,40 @@ def _verify_jq(gen, poses, qs) -> Verdict:
                    "(8)'s minus root, the collar of the other assembly mode")
 
 
+def _verify_sect44(gen) -> Verdict:
+    """002 Sect. 4.4, eq. (19): the singular configurations it lists, built from the pose,
+    and which matrix loses rank there: J_theta (the virtual chain's twists, pose_twist),
+    or J_q through dq/dX (det_Ji: an actuator moves without moving the pose)."""
+    home = np.asarray(gen.HOME)
+    ref = gen.singularities(home, gen.ik(home, limits=False))
+
+    def at(pose):
+        pose = np.asarray(pose, dtype=float)
+        modes = gen.ik_all(pose, limits=False)
+        q = next(m for m in modes if np.isfinite(m).all())
+        s = gen.singularities(pose, q)
+        rank = int(np.linalg.matrix_rank(gen.pose_twist(pose), tol=1e-9))
+        return q, {k: abs(float(v)) / abs(float(ref[k])) for k, v in s.items()}, rank
+
+    q_y, s_y, r_y = at([-np.pi / 2, 0.0, 60.0, 0.0])  # the shaft along u2 = y
+    q_x, s_x, r_x = at([0.0, -np.pi / 2, 20.0, 0.0])  # the shaft along u1 = x
+    ok = (s_y["det_Ji_shaft"] < 1e-12 and r_y == 4 and r_x == 3
+          and s_x["det_Ji_shaft"] > 1e-3 and s_x["det_Jo_shaft"] > 1e-3)
+    return Verdict("002 Sect. 4.4, eq. (19)", "the first kind (rank J_theta < 4) at alpha1 = "
+                   "+-pi/2 and alpha2 = +-pi/2", "erratum" if ok else "not-checkable", None,
+                   f"alpha1 = {q_y[0]:.4f} rad puts the shaft on u2: det Ji vanishes (below 1e-12 "
+                   f"of its value at home) with J_theta of full rank "
+                   f"{r_y}: alpha2 turns limb 2's plane about the shaft without moving it, a "
+                   "rank loss of J_q (through dq/dX), not of J_theta. alpha2 = "
+                   f"{q_x[1]:.4f} rad puts the shaft on u1: there J_theta has rank {r_x} "
+                   "(theta1 turns about the shaft: the virtual chain's own singularity, phi1 = "
+                   "0 or pi, where a01 is undefined) and det Ji, det Jo do not vanish; the two "
+                   "limb planes coincide only if alpha1 = +-pi/2 as well. The other kinds, l_cd,i "
+                   "= 0 (det Jo) and a limb stretched or folded (det Ji, boundary_b1, b2), are "
+                   "the generated factors (tests/test_urrh_rcm.py builds both)" if ok else
+                   "the configurations could not be evaluated")
+
+
 def _verify_workspace(studies) -> list[Verdict]:
     ws = studies.get("workspace_002")
     if ws is None:
@@ -422,6 +456,7 @@ def verify(d, gen, studies) -> list[Verdict]:
         *_verify_virtual_chain(d),
         _verify_twist(gen, poses),
         _verify_jq(gen, poses, qs),
+        _verify_sect44(gen),
         *_verify_workspace(studies),
     ]
     return out
