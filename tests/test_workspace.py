@@ -72,6 +72,20 @@ def test_scan_is_the_same_serial_parallel_chunked_and_on_dask():
     assert np.array_equal(dask_res.mask, ref.mask) and dask_res.reasons == ref.reasons
 
 
+
+def test_scan_of_a_module_object_runs_here_and_refuses_processes():
+    """A module object (e.g. one a derivation just generated, not yet on disk) is scanned
+    in this process or on threads; process workers would import the file instead."""
+    import importlib
+
+    mod = importlib.import_module("bonered_alg.generated.tripod_planar")
+    g = _small_grid()
+    ref = scan("tripod_planar", g, workers=1, chunk=1 << 16)
+    got = scan(mod, g, workers=1, chunk=1 << 16)
+    assert got.count == ref.count and np.array_equal(got.mask, ref.mask)
+    with pytest.raises(ValueError, match="tripod_planar: a module object is scanned"):
+        scan(mod, g, workers=1, client="local")
+
 def _stewart_sample(n, xy=80.0, z=(170.0, 300.0), ang=0.35):
     return np.column_stack([RNG.uniform(-xy, xy, n), RNG.uniform(-xy, xy, n),
                             RNG.uniform(*z, n), *(RNG.uniform(-ang, ang, (3, n)))])

@@ -19,6 +19,7 @@ from collections.abc import Callable, Mapping
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
 from multiprocessing import get_context
+from types import ModuleType
 
 import numpy as np
 
@@ -74,7 +75,7 @@ class ScanResult:
         return hi - lo
 
 
-def scan_chunk(mechanism: str, grid: Grid, start: int, stop: int, criteria: Criteria,
+def scan_chunk(mechanism: str | ModuleType, grid: Grid, start: int, stop: int, criteria: Criteria,
                params: Mapping, keep_mask: bool) -> ChunkResult:
     """Classify samples ``start:stop`` of ``grid`` (runs in a worker)."""
     poses = grid.poses(start, stop)
@@ -176,11 +177,12 @@ def _run_dask(tasks, client, workers, progress):
             own.close()
 
 
-def scan(mechanism: str, grid: Grid, criteria: Criteria = DEFAULT_CRITERIA, *,
+def scan(mechanism: str | ModuleType, grid: Grid, criteria: Criteria = DEFAULT_CRITERIA, *,
          chunk: int | None = None, workers: int | None = None, client=None,
          keep_mask: bool | None = None, progress: Callable[[int, int], None] | None = None,
          **params) -> ScanResult:
-    """Scan ``grid`` for ``mechanism`` (a generated module's name).
+    """Scan ``grid`` for ``mechanism`` (a generated module's name, or the module itself:
+    then in this process or on threads only, e.g. a module just generated and not on disk).
 
     ``workers``: threads or processes (default: all cores); ``client``: None (local
     workers), a ``dask.distributed.Client``, or ``"local"``; ``chunk``: samples per task
@@ -192,6 +194,7 @@ def scan(mechanism: str, grid: Grid, criteria: Criteria = DEFAULT_CRITERIA, *,
     the usual ``if __name__ == "__main__":`` guard.
     """
     module = load_module(mechanism)
+    in_memory = isinstance(mechanism, ModuleType)
     criteria.check(module)
     if tuple(grid.pose_names) != tuple(module.POSE):
         raise ValueError(f"{mechanism}: the grid's pose coordinates {grid.pose_names} are "
@@ -203,7 +206,12 @@ def scan(mechanism: str, grid: Grid, criteria: Criteria = DEFAULT_CRITERIA, *,
         raise ValueError(f"chunk must be a multiple of 8 (the mask is bit-packed), got {chunk}")
     workers = workers or os.cpu_count() or 1
     keep = grid.size <= MASK_LIMIT if keep_mask is None else keep_mask
-    tasks = [(module.MECHANISM, grid, a, b, criteria, dict(params), keep)
+    if in_memory and (client is not None or (workers > 1 and not threads)):
+        raise ValueError(f"{module.MECHANISM}: a module object is scanned in this process "
+                         "or on threads only; pass the generated module's name for process "
+                         "or dask workers (they import it)")
+    target = module if in_memory else module.MECHANISM
+    tasks = [(target, grid, a, b, criteria, dict(params), keep)
              for a, b in grid.chunks(chunk)]
     t0 = time.perf_counter()
     if client is None:
