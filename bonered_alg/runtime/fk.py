@@ -36,13 +36,38 @@ def closure_system(spec, q, study, par):
             numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n)))
 
 
+STEP_RTOL = 1e-14  # a Gauss-Newton step this small relative to 1 + |x| ends the polish
+
+
+def _flat_rows(arrays, shape):
+    """Each array broadcast to the leading ``shape`` and flattened to rows (a scalar stays
+    a scalar): what the kernels take, row by row."""
+    out = []
+    for a in arrays:
+        a = numpy.asarray(a, dtype=float)
+        out.append(a if a.ndim == 0 else numpy.broadcast_to(a, shape).reshape(-1))
+    return out
+
+
 def polish(spec, q, study, par, iterations=6):
     """Gauss-Newton steps on the (well-conditioned) leg generators, from the lex-basis
-    solution: ``(J^T J) step = J^T f`` (the plain Newton step when J is square)."""
+    solution: ``(J^T J) step = J^T f`` (the plain Newton step when J is square).  Each row
+    stops once its step is below STEP_RTOL (1 + |x|), or where the step is not defined: the
+    kernels are evaluated on the rows still moving only (a lex-basis solution needs one or
+    two steps)."""
     n = len(spec.unknowns)
+    shape = study.shape[:-1]
+    x = study.reshape(-1, n).copy()
+    qr = numpy.broadcast_to(q, shape + q.shape[-1:]).reshape(-1, q.shape[-1])
+    pr = _flat_rows(par, shape)
+    rows = numpy.flatnonzero(numpy.isfinite(x).all(axis=-1))
     for _ in range(iterations):
+        if rows.size == 0:
+            break
+        sub = x[rows]
         with numpy.errstate(all="ignore"):
-            f, jac = closure_system(spec, q, study, par)
+            f, jac = closure_system(spec, qr[rows], sub,
+                                    [p if p.ndim == 0 else p[rows] for p in pr])
             jtj = numpy.swapaxes(jac, -1, -2) @ jac
             jtf = numpy.swapaxes(jac, -1, -2) @ f[..., None]
             ok = numpy.all(numpy.isfinite(jtj), axis=(-2, -1)) & numpy.all(
@@ -50,9 +75,11 @@ def polish(spec, q, study, par, iterations=6):
             ok &= numpy.abs(numpy.linalg.det(numpy.where(ok[..., None, None], jtj,
                                                          numpy.eye(n)))) > 0.0
             safe = numpy.where(ok[..., None, None], jtj, numpy.eye(n))
-            step = numpy.linalg.solve(safe, numpy.where(ok[..., None, None], jtf, 0.0))
-        study = numpy.where(ok[..., None], study - step[..., 0], study)
-    return study
+            step = numpy.linalg.solve(safe, numpy.where(ok[..., None, None], jtf, 0.0))[..., 0]
+            moving = ok & (numpy.abs(step) > STEP_RTOL * (1.0 + numpy.abs(sub))).any(axis=-1)
+        x[rows] = numpy.where(ok[..., None], sub - step, sub)
+        rows = rows[moving]
+    return x.reshape(study.shape)
 
 
 def verify(spec, q, study, par, status):
@@ -73,10 +100,14 @@ def verify(spec, q, study, par, status):
         rows = numpy.linalg.norm(js, axis=-1)
         rows = numpy.where(rows > 0, rows, 1.0)
         js, fs = js / rows[..., None], numpy.where(finite[..., None], f, 0.0) / rows
-        sv = numpy.linalg.svd(js, compute_uv=False)
+        u, sv, vt = numpy.linalg.svd(js, full_matrices=False)
         cond_ok = sv[..., -1] > COND_RTOL * sv[..., 0]
-        # the Gauss-Newton step in the scaled unknowns, by least squares through the SVD
-        step = (numpy.linalg.pinv(js, rcond=COND_RTOL) @ fs[..., None])[..., 0]
+        # the Gauss-Newton step in the scaled unknowns, by least squares through the same
+        # SVD (the pseudo-inverse with singular values below COND_RTOL of the largest cut)
+        kept = sv > COND_RTOL * sv[..., :1]
+        inv = numpy.where(kept, 1.0 / numpy.where(kept, sv, 1.0), 0.0)
+        proj = numpy.einsum("...ji,...j->...i", u, fs)
+        step = numpy.einsum("...ij,...i->...j", vt, inv * proj)
         verified = finite & (numpy.abs(step) <= VERIFY_RTOL).all(axis=-1)
     solved = numpy.isfinite(study).all(axis=-1)
     study = numpy.where(solved[..., None] & ~verified[..., None], numpy.nan, study)

@@ -31,7 +31,8 @@ STATUS = {
                     "value is undetermined or unbounded and dq/dX is not defined",
     INVALID_INPUT: "non-finite pose coordinate",
     STROKE_LIMIT: "an actuator stroke is outside its range (LIMITS, kind 'stroke')",
-    PASSIVE_JOINT_LIMIT: "a passive joint angle is outside its range (LIMITS, kind 'passive')",
+    PASSIVE_JOINT_LIMIT: "a passive joint (an angle, or a collar's slide) is outside its "
+                         "range (LIMITS, kind 'passive')",
     FORWARD_SINGULAR: "forward (output) singularity: two assembly modes (nearly) merge; the "
                       "pose of this mode is returned but not determined to working precision",
     OUTSIDE_CHART: "the platform is turned by a half-turn (x0 = 0), outside the chart x0 = 1 "
