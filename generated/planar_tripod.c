@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3850938684ed31d63f23700b1cacef18c812935bdc2e45a2113bd51eecd2f0aa
+ * Derivation hash: 77e93450b7596476daa74e2bcd795408cfcf8636284e78f164e761a656f389bc
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "3850938684ed31d63f23700b1cacef18c812935bdc2e45a2113bd51eecd2f0aa";
+const char bonered_derivation_hash[] = "77e93450b7596476daa74e2bcd795408cfcf8636284e78f164e761a656f389bc";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

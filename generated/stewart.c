@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fd5bb3043de6ae1a7d99e314a264c2b8b9cc9cd1624d80e839126dc0d66b37fd
+ * Derivation hash: a0c011a58ccf708e0d35d5afccd73e516b63590044114100cbe3e52d5509d448
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "fd5bb3043de6ae1a7d99e314a264c2b8b9cc9cd1624d80e839126dc0d66b37fd";
+const char bonered_derivation_hash[] = "a0c011a58ccf708e0d35d5afccd73e516b63590044114100cbe3e52d5509d448";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: cf63bf5b3913891217bb879c88ac1090ea18bb540162395726d1f2072011f9cf
+ * Derivation hash: 1afea7f1531d946a77493963ddcee5057d5a9b02cee92f63dc1797dfe982067f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "cf63bf5b3913891217bb879c88ac1090ea18bb540162395726d1f2072011f9cf";
+const char bonered_derivation_hash[] = "1afea7f1531d946a77493963ddcee5057d5a9b02cee92f63dc1797dfe982067f";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -227,6 +227,13 @@ static inline void _jac(double v_theta1, double v_theta2, double v_d, double v_g
     out[23] = v__c114*v__c79;
 }
 
+/* Quantities bounded by LIMITS (joint strokes, passive angles). */
+static inline void _limit_values(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_a1, double v_a2, double v_b1, double v_b2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+{
+    out[0] = v_d;
+    out[1] = v_d - v_gamma*v_p;
+}
+
 static void solve_one(const double *restrict p, const double *restrict par, int mode,
                       int limits, double *restrict q, signed char *restrict status_out,
                       double *restrict jac)
@@ -258,7 +265,21 @@ static void solve_one(const double *restrict p, const double *restrict par, int 
     q[3] = failed ? NAN : r[3];
     if (!bf_all_finite(p, 4))
         status = BF_INVALID_INPUT;
-    (void)limits;
+    if (limits && bf_all_finite(q, 4)) {
+        double v[2];
+        _limit_values(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
+        int stroke = 0, passive = 0;
+        passive |= (v[0] < 0.0) | (v[0] > 303.4);
+        passive |= (v[1] < 0.0) | (v[1] > 323.0);
+        int ok = bf_all_finite(q, 4);
+        if (stroke || passive)
+            bf_fill_nan(q, 4);
+        if (ok && passive && status == BF_OK)
+            status = BF_PASSIVE_JOINT_LIMIT;
+        if (ok && stroke && status != BF_INVALID_INPUT
+            && (status == BF_OK || status == BF_PASSIVE_JOINT_LIMIT))
+            status = BF_STROKE_LIMIT;
+    }
     if (jac) {
         double v[24];
         _jac(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);

@@ -319,3 +319,30 @@ def test_singularities_at_configurations_built_independently():
     # the shaft along u2 = y: theta1 = -pi/2, theta2 = 0 gives u = Rx(-pi/2) (0, 0, -1) = y
     along_y = m.singularities(np.array([-np.pi / 2, 0.0, 80.0, 0.0]), np.zeros(4))
     assert abs(along_y["boundary_a2"]) < 1e-12 * max(ref["boundary_a2"], 1.0)
+
+
+def test_workspace_tool_agrees_with_the_per_collar_ranges():
+    """002 Sect. 5.2 through the workspace tool (boundary search on the full membership
+    test, the collar limits d_i >= 0 included) against the per-collar intervals of the
+    IK's joint statuses: the range of d at gamma = 0 is D1 and D2's common part, the range
+    of gamma at its middle is (d_ref - D2)/p, to the per-collar grid's 0.05 mm."""
+    from bonered_alg.studies import workspace_002 as ws
+
+    for a1, a2 in ((-30.0, 30.0), (0.0, 0.0), (25.0, -10.0)):
+        r = ws.collar_ranges(m, np.radians(a1), np.radians(a2))
+        t = ws.tool_ranges(m, np.radians(a1), np.radians(a2), r)
+        assert t["error"] <= 0.05 + 1e-3, (a1, a2, t)
+        assert t["d"][0] == 0.0  # collar limits: d_i >= 0 binds at O
+    home = ws.collar_ranges(m, 0.0, 0.0)
+    hs = ws.home_scan(m, home)
+    assert hs["agrees"] and hs["inner"] <= hs["result"].count <= hs["outer"]
+    assert hs["component"].count > 0.9 * hs["result"].count
+
+
+def test_collar_limits_flag_a_collar_beyond_the_rcm_point():
+    """gamma large enough puts collar 2 at d2 = d - p gamma < 0 (inside the patient): a
+    passive-joint limit, named in the joint statuses."""
+    pose = np.array([0.0, 0.0, 40.0, 6.0])  # d2 = 40 - 60 = -20 mm
+    assert m.ik_status(pose, limits=False) == st.OK
+    assert m.ik_status(pose) == m.PASSIVE_JOINT_LIMIT
+    assert m.limit_values(pose, m.ik(pose, limits=False))["d2"] == pytest.approx(-20.0)

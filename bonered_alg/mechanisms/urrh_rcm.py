@@ -24,10 +24,14 @@ from __future__ import annotations
 
 import sympy as sp
 
+from ..algebra import convention as cv
 from ..algebra import study_symbolic as ss
+from ..analyses.closure_dimension import ClosureDimension
+from ..analyses.remote_centre import RemoteCentre
 from ..declaration import (
     Closure,
     InputFunction,
+    Limit,
     Parameter,
     PoseFunction,
     PoseMap,
@@ -98,6 +102,21 @@ def crank_angle(lae, lef, q):
     return sp.pi - sp.acos((q**2 + lae**2 - lef**2) / (2 * q * lae))
 
 
+
+
+def plane_normal(fixed: str, normal: str, t: sp.Symbol) -> tuple[sp.Expr, ...]:
+    """n_i (1 + t^2) = exp(u_i^ alpha_i) v_i with t = tan(alpha_i/2) (002 eq. 6): the
+    normal of limb i's plane, the axis ``normal`` turned about the fixed axis ``fixed``."""
+    rows = cv.rotation_matrix_times_norm(ss.rotation(fixed, t))
+    k = "xyz".index(normal)
+    return tuple(sp.expand(r[k]) for r in rows)
+
+
+# 002 Sect. 2.4, eq. (4): each limb moves in the plane through O normal to n_i
+REMOTE_CENTRE = RemoteCentre("remote_centre", "shaft",
+                             {"1": plane_normal("x", "y", a1), "2": plane_normal("y", "x", a2)},
+                             title="Remote centre of motion from the ideal (002 Sect. 2.4)")
+
 POSE_FUNCTIONS = (
     PoseFunction("shaft", ("ux", "uy", "uz", "d1", "d2"),
                  (*U_OF_POSE, d, d - p * gamma),
@@ -133,6 +152,35 @@ def _table1(name, value, what, limb, domain="positive"):
     return Parameter(name, value, "mm", f"{what}, limb {limb}", "002 Table 1", domain=domain)
 
 
+PARAMETERS = (
+    _table1("loa1", 130.0, "l_oa = |O A_1|", 1),
+    _table1("lab1", 90.0, "l_ab = |A_1 B_1|", 1),
+    _table1("lbc1", 83.4, "l_bc = |B_1 C_1|", 1),
+    _table1("lae1", 161.3, "l_ae = |A_1 E_1| (slider-crank)", 1),
+    _table1("lef1", 161.3, "l_ef = |E_1 F_1| (slider-crank)", 1),
+    _table1("loa2", 148.2, "l_oa = |O A_2|", 2),
+    _table1("lab2", 85.0, "l_ab = |A_2 B_2|", 2),
+    _table1("lbc2", 89.8, "l_bc = |B_2 C_2|", 2),
+    _table1("lae2", 161.3, "l_ae = |A_2 E_2| (slider-crank)", 2),
+    _table1("lef2", 160.3, "l_ef = |E_2 F_2| (slider-crank)", 2),
+    Parameter("p", 10.0, "mm/rad", "pitch of the virtual screw (the pulley radius, eq. 9)",
+              "assumed: 002 Sect. 5.1 says Table 1 gives the pulley radius, but the "
+              "printed Table 1 has no such column", domain="positive"))
+
+
+def _collar_limits() -> tuple[Limit, ...]:
+    """The collars stay on their side of the RCM point, 0 <= d_i (u points from O towards
+    them, 002 eq. 5; beyond O the shaft is inside the patient), and within the limb's reach
+    d_i <= l_oa,i + l_ab,i + l_bc,i (Table 1; never binding).  No slider strokes or passive
+    angle ranges are printed, so these are the only limits."""
+    v = {q.name: q.value for q in PARAMETERS}
+    reach = {i: v[f"loa{i}"] + v[f"lab{i}"] + v[f"lbc{i}"] for i in (1, 2)}
+    src = ("assumed: the collar stays on its side of the RCM point (002 eq. 5); upper "
+           "bound the limb's reach (Table 1)")
+    return (Limit("d1", d, 0.0, reach[1], "passive", "mm", src),
+            Limit("d2", d - p * gamma, 0.0, reach[2], "passive", "mm", src))
+
+
 MECHANISM = declare(
     name=NAME,
     title="2-URRH remote-centre-of-motion manipulator",
@@ -142,20 +190,7 @@ MECHANISM = declare(
             "joints at B_i and C_i, and a collar on the common shaft; the collars' "
             "positions along the shaft drive its translation and, through the virtual "
             "screw, its spin (002 eq. 9).  3R1T with a remote centre of motion at O.",
-    parameters=(
-        _table1("loa1", 130.0, "l_oa = |O A_1|", 1),
-        _table1("lab1", 90.0, "l_ab = |A_1 B_1|", 1),
-        _table1("lbc1", 83.4, "l_bc = |B_1 C_1|", 1),
-        _table1("lae1", 161.3, "l_ae = |A_1 E_1| (slider-crank)", 1),
-        _table1("lef1", 161.3, "l_ef = |E_1 F_1| (slider-crank)", 1),
-        _table1("loa2", 148.2, "l_oa = |O A_2|", 2),
-        _table1("lab2", 85.0, "l_ab = |A_2 B_2|", 2),
-        _table1("lbc2", 89.8, "l_bc = |B_2 C_2|", 2),
-        _table1("lae2", 161.3, "l_ae = |A_2 E_2| (slider-crank)", 2),
-        _table1("lef2", 160.3, "l_ef = |E_2 F_2| (slider-crank)", 2),
-        Parameter("p", 10.0, "mm/rad", "pitch of the virtual screw (the pulley radius, eq. 9)",
-                  "assumed: 002 Sect. 5.1 says Table 1 gives the pulley radius, but the "
-                  "printed Table 1 has no such column", domain="positive")),
+    parameters=PARAMETERS,
     joints=(a1, a2, b1, b2),
     joint_units=("rad",) * 4,
     angle_joints={a1: "alpha1", a2: "alpha2", b1: "beta1", b2: "beta2"},
@@ -182,6 +217,10 @@ MECHANISM = declare(
     # angle to the shaft (002 Sect. 4.4: "the angle between the coupler link and the
     # central shaft in a range of small values"): beta1 = 4.44 deg, beta2 = -12.38 deg
     # (v2 = u1 turns B2 towards +z for beta2 > 0), alpha2 = 0 rather than the half-turn
+    limits=_collar_limits(),
+    analyses=(ClosureDimension("mobility", "shaft", title="Mobility from the ideal "
+                                                          "(002 eq. 3)"),
+              REMOTE_CENTRE),
     pose_functions=POSE_FUNCTIONS,
     functions=FUNCTIONS,
     singularity_notes={
@@ -223,8 +262,10 @@ MECHANISM = declare(
         "angle k2 and moved along it, so limb 2's ideal has alpha2 and its half-turn "
         "alpha2 + pi as the two roots of a quadratic (the IK's alpha2 mode bit), while limb "
         "1's gives alpha1 = theta1 directly. The RCM property is built into F (its origin is "
-        "d1 u); the verification checks that both chains close on it, not that a 2-URRH "
-        "must have one.",
+        "d1 u); that a 2-URRH must have one is proved separately, each limb closing on a "
+        "general platform (the section on the remote centre): it holds wherever the limb "
+        "planes differ, and fails where they coincide (alpha1 = alpha2 = +-pi/2, far outside "
+        "the workspace), configurations this pose map cannot describe.",
         "Fig. 5, 7, 8 and 10-13 are not in the text: the slider-crank's geometry beyond eq. "
         "(7) and (13), the singular configurations of Fig. 8 and the five orientations of "
         "Table 2 are read from the equations only."),

@@ -96,8 +96,10 @@ def _verify_eq1_2() -> Verdict:
 
 
 def _verify_mobility(d, gen, poses, qs) -> Verdict:
-    """The closure variety's dimension from the rank of the generators' Jacobian at its
-    points (a smooth point's tangent space): 8 coordinates minus the rank."""
+    """The closure variety's dimension, exactly (the Krull dimension of its ideal at Table
+    1's geometry, :mod:`bonered_alg.analyses.closure_dimension`) and at real points (8
+    coordinates minus the rank of the generators' Jacobian: a smooth point's tangent
+    space)."""
     gens = [g for r in d.legs for g in r.generators]
     unknowns = [s for s in d.mechanism.closures[0].pose] + list(d.mechanism.joints)
     jac = sp.Matrix(gens).jacobian(unknowns)
@@ -110,18 +112,77 @@ def _verify_mobility(d, gen, poses, qs) -> Verdict:
                 pose[2] - gen.PARAMETERS["p"] * pose[3], *t]
         s = np.linalg.svd(np.asarray(f(*vals), dtype=float), compute_uv=False)
         dims.add(len(unknowns) - int((s > 1e-9 * s[0]).sum()))
-    fk_modes = gen.FK_MODES
-    ok = dims == {4}
+    krull = d.analyses["mobility"].dimension
+    ok = dims == {4} and krull == 4
     return Verdict("002 eq. (3)", "mobility: 6 constraints on 10 variables, 4 dof (3R1T)",
-                   "confirmed-numeric" if ok else "erratum", None,
-                   f"the closure variety in (w1, w2, d1, d2, a1, a2, b1, b2) has dimension "
-                   f"{sorted(dims)} at 12 random configurations (8 minus the rank of the "
-                   f"ideal's Jacobian); with the four actuated joints fixed it is finite "
-                   f"({fk_modes} assembly modes): 4 dof, three rotations (theta1, theta2, "
+                   "confirmed-symbolic" if ok else "erratum", None,
+                   f"the ideal of the closure in (w1, w2, d1, d2, a1, a2, b1, b2) at Table 1's "
+                   f"geometry has Krull dimension {krull}; at 12 random real configurations "
+                   f"the tangent space has dimension {sorted(dims)} (8 minus the rank of the "
+                   f"ideal's Jacobian), so they are smooth points of a {krull}-dimensional "
+                   f"component; with the four actuated joints fixed it is finite "
+                   f"({gen.FK_MODES} assembly modes): 4 dof, three rotations (theta1, theta2, "
                    "gamma) and the translation d")
 
 
-def _verify_planes(gen, poses, qs) -> list[Verdict]:
+def _coplanar_witness(d) -> dict:
+    """A real configuration at alpha1 = alpha2 = pi/2, where both limb planes are z = 0:
+    the shaft on the line x = -20 mm (20 mm from O), collar 1 at (-20, -10, 0) and collar 2
+    at (-20, -60, 0).  Each planar limb reaches its collar if |C_i - A_i| is between
+    |l_ab - l_bc| and l_ab + l_bc; the collars may turn freely in the plane (about n_i)."""
+    par = {s.name: s.value for s in d.mechanism.parameters}
+    a = {1: np.array([-par["loa1"], 0.0]), 2: np.array([0.0, -par["loa2"]])}
+    c = {1: np.array([-20.0, -10.0]), 2: np.array([-20.0, -60.0])}
+    reach = {}
+    for i in (1, 2):
+        r = float(np.linalg.norm(c[i] - a[i]))
+        lab, lbc = par[f"lab{i}"], par[f"lbc{i}"]
+        reach[i] = (r, abs(lab - lbc) <= r <= lab + lbc)
+    return {"distance": 20.0, "reach": reach}
+
+
+def _verify_rcm(d) -> Verdict:
+    """The RCM property from the ideal (:mod:`bonered_alg.analyses.remote_centre`): the
+    shaft line through O wherever the limb planes differ, and a real configuration that
+    loses it where they coincide."""
+    rc = d.analyses["remote_centre"]
+    w = _coplanar_witness(d)
+    real = all(ok for _, ok in w["reach"].values())
+    reach = ", ".join(f"|C{i} - A{i}| = {r:.1f} mm" for i, (r, _) in w["reach"].items())
+    return Verdict(
+        "002 Sect. 2.4, eq. (1)-(5)", "the shaft passes through the RCM point O in every "
+        "configuration (pattern of the transform matrices)",
+        "confirmed-symbolic" if rc.proved else "erratum", None,
+        ("each limb closing on a general platform (chart x0 = 1): n_i . u and n_i . p lie in "
+         "its elimination ideal (the planes of eq. 4), and |n1 x n2|^2 m is in the sum of the "
+         "two ideals (m the shaft line's moment about O, an identity checked by expansion), so "
+         "the shaft passes through O wherever n1 x n2 != 0. It vanishes only at alpha1 = "
+         "alpha2 = +-pi/2 (both planes z = 0), and there the property fails: the shaft on "
+         "the line x = -20 mm, 20 mm from O, is then a real configuration ("
+         + reach + ", within each planar limb's reach" + ("" if real else ": NOT reached")
+         + "). The paper's argument needs the planes distinct; it says so only for the "
+         "direction (Sect. 4.4)") if rc.proved else
+        "a limb's ideal does not contain its plane's conditions, or the identity fails "
+        "(see the section on the remote centre)")
+
+
+def _planes_symbolic(rc) -> bool:
+    """The printed planes of eq. (4) are the planes normal to the analysis' n_i, and the
+    limbs' ideals contain their conditions."""
+    x, y, z, ta = sp.symbols("x y z t_a", real=True)
+    tan = 2 * ta / (1 - ta**2)  # tan(alpha) from tan(alpha/2)
+    printed = {"1": y + tan * z, "2": x - tan * z}
+    ok = True
+    for g in rc.legs:
+        (t,) = set().union(*(sp.sympify(c).free_symbols for c in g.normal))
+        n = [sp.sympify(c).subs(t, ta) for c in g.normal]
+        plane = n[0] * x + n[1] * y + n[2] * z
+        ok &= sp.cancel(plane / printed[g.leg]) == 1 - ta**2
+        ok &= g.direction_in_plane and g.origin_in_plane
+    return bool(ok)
+
+
+def _verify_planes(gen, poses, qs, rc) -> list[Verdict]:
     err4, err5, err6 = 0.0, 0.0, 0.0
     for pose, q in zip(poses, qs):
         u, n1, n2, *_ = _geometry(gen, pose, q)
@@ -132,10 +193,14 @@ def _verify_planes(gen, poses, qs) -> list[Verdict]:
         w = np.cross(n2, n1)
         err6 = max(err6, float(np.abs(w / np.linalg.norm(w) + u).max()))
     home = np.cross(_ry(0.0) @ X, _rx(0.0) @ Y)
+    symbolic = _planes_symbolic(rc)
     return [
         Verdict("002 eq. (4)", "the limb planes y + tan(alpha1) z = 0, x - tan(alpha2) z = 0",
-                "confirmed-numeric", noise_bound(err4),
-                f"every shaft direction of {len(poses)} random reachable poses lies on both "
+                "confirmed-symbolic" if symbolic else "confirmed-numeric", noise_bound(err4),
+                ("the printed planes are n_i . (x, y, z) = 0 with the normals n_i of eq. (6) "
+                 "(tan-half identity), and each limb's ideal on a general platform contains "
+                 "n_i . u and n_i . p (the remote-centre section); " if symbolic else "")
+                + f"every shaft direction of {len(poses)} random reachable poses lies on both "
                 "planes with the IK's alpha1, alpha2 (mode 0)"),
         Verdict("002 eq. (5)", "u = (-C1 S2, S1 C2, -C1 C2) (normalized)", "confirmed-numeric",
                 noise_bound(err5), "the shaft direction of the pose (from O towards the "
@@ -446,8 +511,9 @@ def verify(d, gen, studies) -> list[Verdict]:
                 "virtual screw's pitch p), but the printed table has no such column: "
                 "p = 10 mm is assumed"),
         _verify_eq1_2(),
+        _verify_rcm(d),
         _verify_mobility(d, gen, poses, qs),
-        *_verify_planes(gen, poses, qs),
+        *_verify_planes(gen, poses, qs, d.analyses["remote_centre"]),
         _verify_eq7(gen, poses, qs),
         *_verify_slider(gen),
         _verify_eq8(gen, poses, qs),
