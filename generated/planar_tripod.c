@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 77e93450b7596476daa74e2bcd795408cfcf8636284e78f164e761a656f389bc
+ * Derivation hash: 1e244b8a43f97aee805f78905b2b43f6833f9015f7b062de3fcf41d980341d74
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "77e93450b7596476daa74e2bcd795408cfcf8636284e78f164e761a656f389bc";
+const char bonered_derivation_hash[] = "1e244b8a43f97aee805f78905b2b43f6833f9015f7b062de3fcf41d980341d74";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

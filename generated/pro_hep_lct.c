@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: be76d4e2800afbff6e638a712f40dbd6d81d7383b63369c62ced7e99e9c0a9a5
+ * Derivation hash: 609ee182ad0ced47c0bcc8c361d47331853e9c99d0beeac2c0a2b464dfe6cb99
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "be76d4e2800afbff6e638a712f40dbd6d81d7383b63369c62ced7e99e9c0a9a5";
+const char bonered_derivation_hash[] = "609ee182ad0ced47c0bcc8c361d47331853e9c99d0beeac2c0a2b464dfe6cb99";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a0c011a58ccf708e0d35d5afccd73e516b63590044114100cbe3e52d5509d448
+ * Derivation hash: 14d6249c272ee8d5986885e1c589126958d7460b54d2d5541abf71bf7ea3ddd1
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "a0c011a58ccf708e0d35d5afccd73e516b63590044114100cbe3e52d5509d448";
+const char bonered_derivation_hash[] = "14d6249c272ee8d5986885e1c589126958d7460b54d2d5541abf71bf7ea3ddd1";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

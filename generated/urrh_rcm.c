@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1afea7f1531d946a77493963ddcee5057d5a9b02cee92f63dc1797dfe982067f
+ * Derivation hash: 4fb7a5a6947bcf0a08507ccbaee36027957650380c534880f152f12a08ad2c84
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "1afea7f1531d946a77493963ddcee5057d5a9b02cee92f63dc1797dfe982067f";
+const char bonered_derivation_hash[] = "4fb7a5a6947bcf0a08507ccbaee36027957650380c534880f152f12a08ad2c84";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

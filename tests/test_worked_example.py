@@ -106,7 +106,12 @@ def test_it_gets_a_report_and_singularities(record):
                           "derivations/planar_3rrr.tex",
                           "derivations/planar_3rrr.verification.json",
                           "derivations/planar_3rrr.algebra.json",
-                          "derivations/planar_3rrr.configurations.png"}
+                          "derivations/planar_3rrr.configurations.png",
+                          "derivations/planar_3rrr.mobility.csv"}
+    # a new mechanism gets its mobility two ways: a planar 3-RRR, order 3, M = 3 = the
+    # tangent dimension of its ideal
+    row = files["derivations/planar_3rrr.mobility.csv"].splitlines()[1].split(",")
+    assert row[1] == "3" and row[7] == "3" and row[10] == "3", row
     names = {s.name for s in record.derivation.singularities}
     assert {"det_Ji_platform", "det_Jo_platform", "boundary_u1"} <= names
     assert "not generated" in record.generated.module.FK_NOTE or record.generated.module.FK_NOTE

@@ -342,9 +342,10 @@ def run_studies(d: Derivation, gm: GeneratedModule) -> dict[str, Study]:
     """Each study module named by the declaration, run on the generated module."""
     out = {}
     if d.mechanism.home and getattr(gm.module, "LINKS", ()):
-        from ..studies import configurations
+        from ..studies import configurations, mobility
 
         out["configurations"] = configurations.run(d, gm.module)
+        out["mobility"] = mobility.run(d, gm.module)
     for ref in d.mechanism.studies:
         study = importlib.import_module(ref).run(d, gm.module)
         if not isinstance(study, Study):
