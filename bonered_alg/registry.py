@@ -15,6 +15,7 @@ MECHANISMS = {
     "tripod_planar": "bonered_alg.mechanisms.tripod_planar",
     "stewart": "bonered_alg.mechanisms.stewart",
     "urrh_rcm": "bonered_alg.mechanisms.urrh_rcm",
+    "lamina_milling": "bonered_alg.mechanisms.lamina_milling",
 }
 REGISTRY = tuple(MECHANISMS)
 

@@ -12,12 +12,13 @@ from conftest import ROOT
 from bonered_alg.runtime import compiled
 from bonered_alg.runtime import status as st
 
-NAMES = ["planar_tripod", "tripod_planar", "pro_hep_lct", "stewart", "urrh_rcm"]
+NAMES = ["planar_tripod", "tripod_planar", "pro_hep_lct", "stewart", "urrh_rcm",
+         "lamina_milling"]
 # half-widths of the random perturbation of HOME: mm for lengths, rad for angles
 SPREAD = {"planar_tripod": (40, 40, 40, 0.3, 0.3, 0.8),
           "tripod_planar": (60, 60, 60, 0.4, 0.4, 0.8),
           "stewart": (60, 60, 60, 0.4, 0.4, 0.8), "pro_hep_lct": (120, 120, 120, 120),
-          "urrh_rcm": (0.6, 0.6, 60, 3.0)}
+          "urrh_rcm": (0.6, 0.6, 60, 3.0), "lamina_milling": (60, 60, 80)}
 
 
 def _module(name):

@@ -44,6 +44,11 @@ class NotSolvable(Exception):
     """A solver recognized the closure but cannot solve it (the message says why)."""
 
 
+class NotTriangular(NotSolvable):
+    """The lex basis in one order of the unknowns has a step of degree > 2 (another order
+    may not)."""
+
+
 class RPSEliminant:
     name = "3-RPS eliminant"
 
@@ -110,14 +115,33 @@ class TriangularLexBasis:
         # linear in the dual part, so the univariate polynomial of the lex basis is in the
         # rotation and the translation follows linearly (with pivots that do not vanish at
         # symmetric configurations such as equal strokes, which the reverse order gave)
+        # within each class, an unknown that fewer generators contain is solved later
+        # (e.g. the height z of 003 eq. 9, in one sphere only: from x, y, not the other way,
+        # whose univariate quartic in z took 90 s)
         primal = set().union(*(sp.sympify(c).free_symbols for c in closure.platform[:4]))
         pose_unknowns = tuple(sorted((y for y in closure.pose if y in syms),
-                                     key=lambda y: y in primal))
-        problem, result, steps, count = self._order(mech, closure, gens, syms, pose_unknowns,
-                                                    algebra)
+                                     key=lambda y: (y in primal,
+                                                    sum(y in g.free_symbols for g in gens))))
+        problem, result, steps, count, pose_unknowns = self._first_triangular(
+            mech, closure, gens, syms, pose_unknowns, algebra)
         return ClosureFK(closure.name, self.name, problem, result, 0, count, tuple(steps),
                          alternates=self._alternates(mech, closure, gens, syms, pose_unknowns,
                                                      steps, algebra))
+
+    def _first_triangular(self, mech, closure, gens, syms, pose_unknowns, algebra):
+        """The lex basis in the preferred order of the pose unknowns, or, where its steps
+        are not all of degree <= 2, in the first other order whose steps are (e.g. three
+        distance equations in (x, y, z) with z in only one: z must be solved last, from
+        x, y, which two circles give by a quadratic and their linear radical axis, 003
+        eq. 9).  The first order's reason is the one reported when none is triangular."""
+        first: NotSolvable | None = None
+        for order in (pose_unknowns, *(o for o in itertools.permutations(pose_unknowns)
+                                       if o != pose_unknowns)):
+            try:
+                return (*self._order(mech, closure, gens, syms, order, algebra), order)
+            except NotTriangular as exc:
+                first = first or exc
+        raise first
 
     def _order(self, mech, closure, gens, syms, pose_unknowns, algebra):
         """The lex basis with the pose unknowns in the given order (the first is solved
@@ -152,7 +176,7 @@ class TriangularLexBasis:
         try:
             steps = plan(pool, pose_unknowns, problem.context)
         except NotImplementedError as exc:
-            raise NotSolvable(f"{exc} ({count} solutions; univariate steps of higher degree "
+            raise NotTriangular(f"{exc} ({count} solutions; univariate steps of higher degree "
                               "are not generated yet)") from None
         return problem, result, steps, count
 
@@ -162,7 +186,17 @@ class TriangularLexBasis:
         (Pro-Hep-LCT's lower closure: 8 l1 (t1^2 - w1^2) with l1 = l3).  The runtime solves
         through them where the first plan's solution fails its check; an order whose plan
         is not triangular, or whose pivots share a factor with the first plan's, is
-        skipped (it would fail at the same points)."""
+        skipped (it would fail at the same points), and so is an order that puts an
+        unknown before one of its class that fewer generators contain (such an order's
+        univariate polynomial is in the rarer unknown, of higher degree: 003 eq. 9's
+        quartic in z took 90 s and gives no new plan)."""
+        primal = set().union(*(sp.sympify(c).free_symbols for c in closure.platform[:4]))
+
+        def admissible(order) -> bool:
+            counts = [(y in primal, sum(y in g.free_symbols for g in gens)) for y in order]
+            return all(not (a[0] == b[0] and a[1] > b[1])
+                       for i, a in enumerate(counts) for b in counts[i + 1:])
+
         pivots = [sp.factor_list(st.B)[1] for st in steps
                   if st.degree == 1 and st.B.free_symbols]
         if not pivots:
@@ -170,7 +204,7 @@ class TriangularLexBasis:
         bad = {f for factors in pivots for f, _ in factors if f.free_symbols}
         out = []
         for order in itertools.permutations(pose_unknowns):
-            if order == pose_unknowns:
+            if order == pose_unknowns or not admissible(order):
                 continue
             try:
                 _, _, alt, _ = self._order(mech, closure, gens, syms, order, algebra)
