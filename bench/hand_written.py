@@ -231,3 +231,44 @@ def urrh_rcm_fk(q, g):
     out = [np.stack([th1, th2, e1, (e1 - e2) / g["p"]], -1)
            for e1 in roots[0] for e2 in roots[1]]
     return np.stack(out, axis=-2)
+
+
+# ------------------------------------------------------------------ lamina_milling (003)
+def lamina_milling(p, g, jacobian=False):
+    """(L, theta1, theta2) from H = (x, y, z) by 003 eq. (7)-(8) solved by hand: L = z - dD
+    + sqrt(lEC^2 - x^2 - (y - dy2 - dy1 - lDE)^2) (C below E), theta_i = phi -+ alpha_i with
+    phi the direction of F = (x, y) and alpha_i the angle at O of the triangle O A F; with
+    ``jacobian``, their derivatives."""
+    x, y, z = p[:, 0], p[:, 1], p[:, 2]
+    yo = y - (g["dy2"] + g["dy1"] + g["lDE"])
+    r = np.sqrt(g["lEC"] ** 2 - x * x - yo * yo)
+    rho2 = x * x + y * y
+    rho = np.sqrt(rho2)
+    phi = np.arctan2(y, x)
+    c1 = (rho2 + g["lOA"] ** 2 - g["lAF"] ** 2) / (2 * g["lOA"] * rho)
+    c2 = (rho2 + g["lOB"] ** 2 - g["lBM"] ** 2) / (2 * g["lOB"] * rho)
+    a1, a2 = np.arccos(c1), np.arccos(c2)
+    q = np.stack([z - g["dD"] + r, phi - a1, phi + a2], axis=-1)
+    if not jacobian:
+        return q
+    # d alpha / d rho = -(dc/d rho) / sin(alpha), dc/d rho = (1 - (a^2 - b^2)/rho^2) / (2a)
+    da1 = -(1 - (g["lOA"] ** 2 - g["lAF"] ** 2) / rho2) / (2 * g["lOA"]) / np.sin(a1)
+    da2 = -(1 - (g["lOB"] ** 2 - g["lBM"] ** 2) / rho2) / (2 * g["lOB"]) / np.sin(a2)
+    dphi = np.stack([-y / rho2, x / rho2], axis=-1)
+    drho = np.stack([x / rho, y / rho], axis=-1)
+    J = np.zeros((len(p), 3, 3))
+    J[:, 0, 0], J[:, 0, 1], J[:, 0, 2] = -x / r, -yo / r, 1.0
+    J[:, 1, :2] = dphi - da1[:, None] * drho
+    J[:, 2, :2] = dphi + da2[:, None] * drho
+    return q, J
+
+
+def lamina_milling_statics(p, load, g):
+    """003's efforts (f, T1, T2) by hand: J^T tau = grad V - F with the weights' potential
+    V = (lam G1 + G2) L + ((1 - lam) G1 + G7) z + const (lam = l2 / lEC; the bottom links
+    stay at height 0, so G3-G6 do not enter)."""
+    _, J = lamina_milling(p, g, jacobian=True)
+    lam = g["l2"] / g["lEC"]
+    grad = (lam * g["G1"] + g["G2"]) * J[:, 0, :]
+    grad[:, 2] += (1 - lam) * g["G1"] + g["G7"]
+    return np.linalg.solve(np.swapaxes(J, -1, -2), (grad - load)[..., None])[..., 0]

@@ -438,6 +438,7 @@ def hand_written_benchmarks(n=1_000_000):
     cores); ratio = hand-written time / generated time (>= 1: the generated code is as
     fast).  IK + Jacobian is ``ik_and_jacobian`` (one solve for both)."""
     import hand_written as hw
+    from bonered_alg.generated import lamina_milling as lm
     from bonered_alg.generated import planar_tripod as pt
     from bonered_alg.generated import pro_hep_lct as ph
     from bonered_alg.generated import stewart as st
@@ -452,6 +453,8 @@ def hand_written_benchmarks(n=1_000_000):
     ph_poses = np.array(reachable_pro_hep_lct(n, rng))
     lifted = six + [0, 0, 10.0, 0, 0, 0]
     ur_poses = reachable_urrh_rcm(n, rng)
+    lm_poses = np.column_stack([rng.uniform(-15, 15, n), rng.uniform(100, 125, n),
+                                rng.uniform(20, 90, n)])  # 003: around Table 2's path
     cases = {
         "planar_tripod": (pt, six, {}, lambda j: hw.planar_tripod(six, jacobian=j)),
         "stewart": (st, lifted, {}, lambda j: hw.stewart(lifted, jacobian=j)),
@@ -461,6 +464,8 @@ def hand_written_benchmarks(n=1_000_000):
                           lambda j: paper_ik_tripod_planar(six) if not j else None),
         "urrh_rcm": (ur, ur_poses, {},
                      lambda j: hw.urrh_rcm(ur_poses, ur.PARAMETERS, jacobian=j)),
+        "lamina_milling": (lm, lm_poses, {},
+                           lambda j: hw.lamina_milling(lm_poses, lm.PARAMETERS, jacobian=j)),
     }
     out = {"poses": n, "threads": compiled.threads()}
     for name, (m, poses, par, hand) in cases.items():
@@ -494,9 +499,26 @@ def hand_written_benchmarks(n=1_000_000):
                         "hand_written_fk_4_modes_per_s": len(q) / t_hand_fk,
                         "generated_fk_8_modes_per_s": len(q) / t_fk,
                         "fk_ratio_vs_hand_written": t_hand_fk / t_fk})
+        if name == "lamina_milling":  # 003's statics: both methods against the hand form
+            row.update(_statics_benchmark(m, poses[: len(poses) // 10], rng, hw))
         out[name] = row
         print(name, row, flush=True)
     return out
+
+
+def _statics_benchmark(m, poses, rng, hw):
+    """003's static_efforts, both methods, against hand_written.lamina_milling_statics."""
+    load = rng.normal(scale=5.0, size=poses.shape)
+    t_hand = median_time(lambda: hw.lamina_milling_statics(poses, load, m.PARAMETERS), 3)
+    ref = hw.lamina_milling_statics(poses, load, m.PARAMETERS)
+    row = {"statics_poses": len(poses), "hand_written_statics_poses_per_s": len(poses) / t_hand}
+    for method in ("virtual_work", "free_body"):
+        t = median_time(lambda f=method: m.static_efforts(poses, load, method=f), 3)
+        row[f"{method}_statics_poses_per_s"] = len(poses) / t
+        row[f"{method}_statics_ratio_vs_hand_written"] = t_hand / t
+        row[f"{method}_max_rel_difference_statics"] = _max_rel(
+            m.static_efforts(poses, load, method=method), ref)
+    return row
 
 
 def reachable_urrh_rcm(n, rng):

@@ -3,15 +3,15 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5693b2b8fc441c83ec0de58d053438ad4926f1ca09e5b2827a569177c3613e07
+ * Derivation hash: beae889de63979d9548a3ed844c30fe04935fee7e73206738303be6ed47fbc24
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "5693b2b8fc441c83ec0de58d053438ad4926f1ca09e5b2827a569177c3613e07";
+const char bonered_derivation_hash[] = "beae889de63979d9548a3ed844c30fe04935fee7e73206738303be6ed47fbc24";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
-static inline void _study(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double *restrict out)
+static inline void _study(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     out[0] = v_x;
     out[1] = v_y;
@@ -19,7 +19,7 @@ static inline void _study(double v_x, double v_y, double v_z, double v_lOA, doub
 }
 
 /* Coefficients (A, B, C) of the generator solved for L (from platform/U). */
-static inline void _step0_L(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double *restrict out)
+static inline void _step0_L(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_dy1;
     const double v__c1 = 2.0*v_y;
@@ -29,7 +29,7 @@ static inline void _step0_L(double v_x, double v_y, double v_z, double v_lOA, do
 }
 
 /* Coefficients (A, B, C) of the generator solved for t1 (from platform/1). */
-static inline void _step1_t1(double v_x, double v_y, double v_z, double v_L, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double *restrict out)
+static inline void _step1_t1(double v_x, double v_y, double v_z, double v_L, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_lOA*v_x;
     const double v__c1 = -(v_lAF*v_lAF) + (v_lOA*v_lOA) + (v_x*v_x) + (v_y*v_y);
@@ -39,7 +39,7 @@ static inline void _step1_t1(double v_x, double v_y, double v_z, double v_L, dou
 }
 
 /* Coefficients (A, B, C) of the generator solved for t2 (from platform/2). */
-static inline void _step2_t2(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double *restrict out)
+static inline void _step2_t2(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_lOB*v_x;
     const double v__c1 = -(v_lBM*v_lBM) + (v_lOB*v_lOB) + (v_x*v_x) + (v_y*v_y);
@@ -49,7 +49,7 @@ static inline void _step2_t2(double v_x, double v_y, double v_z, double v_L, dou
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
-static inline void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double *restrict out)
+static inline void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_L + 2.0*v_dD - 2.0*v_z;
     const double v__c1 = 2.0*v_t1;
@@ -94,20 +94,20 @@ static void solve_one(const double *restrict p, const double *restrict par, int 
                       double *restrict jac)
 {
     double s[3], c[3], r[3];
-    _study(p[0], p[1], p[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], s);
+    _study(p[0], p[1], p[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], s);
     int status = bf_all_finite(s, 3) ? BF_OK : BF_INVALID_INPUT;
     int failed = 0;
     (void)mode;
     if (failed) { r[0] = NAN; } else {
-        _step0_L(s[0], s[1], s[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], c);
+        _step0_L(s[0], s[1], s[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
         r[0] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
     }
     if (failed) { r[1] = NAN; } else {
-        _step1_t1(s[0], s[1], s[2], r[0], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], c);
+        _step1_t1(s[0], s[1], s[2], r[0], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
         r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
     }
     if (failed) { r[2] = NAN; } else {
-        _step2_t2(s[0], s[1], s[2], r[0], r[1], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], c);
+        _step2_t2(s[0], s[1], s[2], r[0], r[1], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
         r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
     }
     q[0] = failed ? NAN : r[0];
@@ -118,7 +118,7 @@ static void solve_one(const double *restrict p, const double *restrict par, int 
     (void)limits;
     if (jac) {
         double v[15];
-        _jac(p[0], p[1], p[2], q[0], q[1], q[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], v);
+        _jac(p[0], p[1], p[2], q[0], q[1], q[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], v);
         int singular = bf_pivots_singular(v, 3) || status == BF_ON_BOUNDARY;
         for (int k = 0; k < 9; k++)
             jac[k] = singular ? NAN : v[6 + k];

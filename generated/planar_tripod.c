@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1e244b8a43f97aee805f78905b2b43f6833f9015f7b062de3fcf41d980341d74
+ * Derivation hash: e30cfc77e7aa9e7dcf4f01c5c4386781d6518fc479ebaddd1d3f96c11151373e
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "1e244b8a43f97aee805f78905b2b43f6833f9015f7b062de3fcf41d980341d74";
+const char bonered_derivation_hash[] = "e30cfc77e7aa9e7dcf4f01c5c4386781d6518fc479ebaddd1d3f96c11151373e";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 609ee182ad0ced47c0bcc8c361d47331853e9c99d0beeac2c0a2b464dfe6cb99
+ * Derivation hash: 13385f8666b87de36db604358c2e041832ea1640ecb7ae698f17c0d82d859668
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "609ee182ad0ced47c0bcc8c361d47331853e9c99d0beeac2c0a2b464dfe6cb99";
+const char bonered_derivation_hash[] = "13385f8666b87de36db604358c2e041832ea1640ecb7ae698f17c0d82d859668";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

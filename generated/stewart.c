@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 14d6249c272ee8d5986885e1c589126958d7460b54d2d5541abf71bf7ea3ddd1
+ * Derivation hash: 82faf024bf10fd0c4d2975cf83623908cf5201af652cd0f67fbd4f925b3d3cd2
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "14d6249c272ee8d5986885e1c589126958d7460b54d2d5541abf71bf7ea3ddd1";
+const char bonered_derivation_hash[] = "82faf024bf10fd0c4d2975cf83623908cf5201af652cd0f67fbd4f925b3d3cd2";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9d4c415dda8d93de3b513ee8f1476bd834d479361ce51b1311141e04b24cd45a
+ * Derivation hash: 1b9623bb62e75d5829995588906924a5e2ca673d117e23346827b1542f96ea1f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "9d4c415dda8d93de3b513ee8f1476bd834d479361ce51b1311141e04b24cd45a";
+const char bonered_derivation_hash[] = "1b9623bb62e75d5829995588906924a5e2ca673d117e23346827b1542f96ea1f";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

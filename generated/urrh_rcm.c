@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4fb7a5a6947bcf0a08507ccbaee36027957650380c534880f152f12a08ad2c84
+ * Derivation hash: 0773e10060e82e990f0511ba9e6ab0046b5ece7593be7c6f57e9a5f6cdc3774c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "4fb7a5a6947bcf0a08507ccbaee36027957650380c534880f152f12a08ad2c84";
+const char bonered_derivation_hash[] = "0773e10060e82e990f0511ba9e6ab0046b5ece7593be7c6f57e9a5f6cdc3774c";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

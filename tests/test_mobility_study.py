@@ -53,3 +53,8 @@ def test_mobilities_printed_or_known():
     # along the shaft (the spin, through the virtual screw) a local freedom of limb 2
     (ur,) = _rows("urrh_rcm").values()
     assert _motion(ur) == (3, 2, 1) and int(ur["local"]) == 1 and int(ur["krull"]) == 4
+    # 003 eq. (6): M = 5 (9 - 10 - 1) + 12 + 1 = 3, order 5 (the common couple about Y0),
+    # one redundant constraint, pure translation (Sect. 2.1)
+    (lm,) = _rows("lamina_milling").values()
+    assert _motion(lm) == (3, 0, 3) and int(lm["krull"]) == 3
+    assert (int(lm["order"]), int(lm["redundant"]), int(lm["local"])) == (5, 1, 0)

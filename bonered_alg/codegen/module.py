@@ -75,6 +75,8 @@ class IKModuleSpec:
     home: tuple | None = None
     physical_branch: tuple = ()
     link_constants: dict | None = None
+    # link weights for the static model (declaration.weights.LinkWeight)
+    link_weights: Sequence = ()
     # IK steps of distance legs in their geometric form (joint -> sphere_leg.CompactSphere),
     # proved equal to the step's generator: the kernels evaluate these, not the expansions
     compact: dict | None = None
@@ -318,6 +320,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         spec, study, par, kernels)
     link_rows, link_names, link_frames = _link_kernels(spec, study, par, passive_names,
                                                        kernels)
+    statics = (_static_kernels(spec, study, par, passive_names, link_names, kernels)
+               if spec.link_weights else None)
     has_twist = spec.end_effector is not None
     if has_twist:
         from ..kinematics.twist import pose_twist
@@ -355,6 +359,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         names += ["pose_twist", "twist_jacobian"]
     if helical:
         names.append("helical_residuals")
+    if statics:
+        names.append("static_efforts")
     names += [f["name"] for f in pose_functions + functions]
     public = list(spec.public_joints or [str(q) for q in spec.joints])
     context = {
@@ -404,6 +410,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         "link_names": link_names, "link_frames": link_frames, "link_kernels": link_rows,
         "helical": [(str(h.rotation), str(h.translation), sp.sstr(h.pitch)) for h in helical],
         "helical_kernel": "_helical" if helical else "None",
+        "statics": statics,
     }
     by_name = {k.name: k for k in kernels}
     ik_ops = sum(k.operations for k in [by_name["_study"], *step_kernels]
@@ -464,6 +471,7 @@ def module_source(d, generator: str):
         helical=[h for c in m.actuated_closures for leg in c.legs for h in leg.couplings],
         passive_units=_passive_units(m),
         link_legs=[(c.base, leg) for c in m.actuated_closures for leg in c.legs],
+        link_weights=list(m.link_weights),
         link_constants=d.constants,
         home=tuple(m.home) if m.home else None,
         physical_branch=tuple(
@@ -597,6 +605,60 @@ def _link_kernels(spec, study, par, passive_names, kernels):
         names += labels
         frames += [base or "base"] * len(labels)
     return rows, names, frames
+
+
+def _static_kernels(spec, study, par, passive_names, link_names, kernels):
+    """The kernels of the static model (``runtime.statics``): per leg the derivatives of
+    its bodies' Study points by each of its joint variables (the same partial products as
+    the link poses), the weights and their points from the parameters, and the end
+    effector's Study point.  Returns the runtime table (rates, points, names)."""
+    from ..algebra import study_symbolic as ss
+    from ..chains.joints import Role
+    from ..declaration.weights import PLATFORM
+
+    psyms = [sp.Symbol(n, real=True) for n in passive_names]
+    consts = spec.link_constants or {}
+    rates = []
+    for _, leg in spec.link_legs:
+        if f"{leg.name}.1" not in link_names:
+            continue
+        if leg.couplings:
+            raise ValueError(f"{spec.name}: the static model does not handle the helical "
+                             f"joint of leg {leg.name}")
+        variables = []
+        for f in leg.factors:
+            if f.role is not Role.GEOMETRIC:
+                variables += [v for v in sorted(f.free_symbols, key=str) if v not in variables]
+        moving = [k for k, j in enumerate(leg.joints) if j.kind != "offset"]
+        outs = []
+        for k in moving:
+            point = ss.product(*[f.study() for j in leg.joints[:k + 1] for f in j.factors])
+            outs += [sp.expand(sp.diff(c, v)).subs(consts) for v in variables for c in point]
+        # each variable's joint (the body after it, within the leg) and its actuated joint
+        owner = []
+        for v in variables:
+            body = next(b for b, k in enumerate(moving) if v in leg.joints[k].free_symbols)
+            owner.append((body, list(spec.joints).index(v) if v in spec.joints else -1))
+        kern = kernel(f"_rates_{leg.name}", [*study, *spec.joints, *psyms, *par], outs,
+                      f"d(Study point)/d({', '.join(map(str, variables))}) of each body of "
+                      f"leg {leg.name} (body-major, 8 coordinates each).")
+        kernels.append(kern)
+        rates.append((kern.name, link_names.index(f"{leg.name}.1"), len(moving),
+                      len(variables), tuple(owner)))
+    outs, points = [], []
+    for w in spec.link_weights:
+        for pt in w.points:
+            if pt.body != PLATFORM and pt.body not in link_names:
+                raise ValueError(f"{spec.name}: link weight {w.name} is on body {pt.body}, "
+                                 "whose pose is not generated")
+            outs += [w.weight * pt.share, *pt.local]
+            points.append(-1 if pt.body == PLATFORM else link_names.index(pt.body))
+    kernels.append(kernel("_weights", list(par), outs,
+                          "(G * share, cx, cy, cz) of each point of the link weights."))
+    kernels.append(kernel("_end_effector", [*spec.pose, *par], list(spec.end_effector),
+                          "The end effector's Study point (the load acts at its origin)."))
+    return {"rates": rates, "points": tuple(points),
+            "names": tuple(w.name for w in spec.link_weights)}
 
 
 def _passive_units(mech) -> dict:

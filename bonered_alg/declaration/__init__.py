@@ -20,8 +20,9 @@ from .mechanism import (
     validate,
 )
 from .parameters import Constant, Parameter
+from .weights import LinkWeight, WeightPoint
 
 __all__ = ["Closure", "Constant", "Coupling", "ExtraGenerator", "HelicalCoupling",
-           "InputFunction", "Joint", "Leg", "Limit", "Mechanism", "Parameter", "PoseFunction",
-           "PoseMap", "Role", "UnitCoordinate", "UnitRotation", "declare", "joint", "leg",
-           "load_declaration", "validate"]
+           "InputFunction", "Joint", "Leg", "Limit", "LinkWeight", "Mechanism", "Parameter",
+           "PoseFunction", "PoseMap", "Role", "UnitCoordinate", "UnitRotation", "WeightPoint",
+           "declare", "joint", "leg", "load_declaration", "validate"]

@@ -24,6 +24,7 @@ from ..chains.joints import Role
 from ..errors import MechanismDefinitionError, UndefinedParameterError
 from .closures import Closure, UnitCoordinate, UnitRotation, infer_chart
 from .parameters import DOMAINS, Constant, Parameter
+from .weights import PLATFORM, LinkWeight, body_names
 
 
 @dataclass(frozen=True)
@@ -135,6 +136,8 @@ class Mechanism:
     # algebra's tan-half-angle symbol -> the user's name, angle = 2 atan(symbol) in rad
     # (home_joints gives their values as angles)
     angle_joints: Mapping[sp.Symbol, str] = field(default_factory=dict)
+    # the weights of the links for the static model (generated ``static_efforts``)
+    link_weights: tuple[LinkWeight, ...] = ()
 
     def public_joint(self, q: sp.Symbol) -> str:
         """The name users see for the actuated joint ``q`` (its angle's, for an angle
@@ -219,7 +222,7 @@ def declare(**kwargs) -> Mechanism:
                                              f"{', '.join(missing)}")
     conv = dict(kwargs)
     for key in ("parameters", "joints", "joint_units", "closures", "constants", "analyses",
-                "reading_notes", "studies", "home"):
+                "reading_notes", "studies", "home", "link_weights"):
         if key in conv and not callable(conv[key]):
             conv[key] = tuple(conv[key])
     return Mechanism(**conv)
@@ -271,6 +274,7 @@ def validate(mech: Mechanism) -> None:
         _check_module_reference(mech, ref, "verify" if ref == mech.checks else "run")
     _check_home(mech)
     _check_angle_joints(mech)
+    _check_link_weights(mech)
     if mech.forward_kinematics and not isinstance(mech.forward_kinematics, str):
         _fail(mech, "forward_kinematics must be a string (why it is not generated) or ''")
 
@@ -293,6 +297,40 @@ def _check_home(mech: Mechanism) -> None:
                         f"{list(map(str, mech.joints))})")
         if not _finite_number(v):
             _fail(mech, f"home_joints[{q}] must be a finite number, got {v!r}")
+
+
+def _check_link_weights(mech: Mechanism) -> None:
+    """Each weight a declared parameter, its points on known bodies in parameters only, the
+    shares summing to 1; the legs free of closure coordinates (their rates would not be
+    joint rates)."""
+    if not mech.link_weights:
+        return
+    if mech.pose.end_effector is None:
+        _fail(mech, "link_weights need the pose map's end_effector (the load acts at its "
+                    "origin)")
+    bodies = set(body_names(mech)) | {PLATFORM}
+    geometric = set(mech.geometric)
+    coords = {s for c in mech.actuated_closures for s in c.pose}
+    for c in mech.actuated_closures:
+        for leg in c.legs:
+            if leg.free_symbols & coords:
+                _fail(mech, f"link_weights: leg {leg.name!r} depends on the closure's "
+                            "coordinates; the static model needs legs of joints only")
+    for w in mech.link_weights:
+        if w.weight not in geometric:
+            _fail(mech, f"link weight {w.name}: {w.weight} is not a declared parameter")
+        if not w.points:
+            _fail(mech, f"link weight {w.name}: no point")
+        for pt in w.points:
+            if pt.body not in bodies:
+                _fail(mech, f"link weight {w.name}: unknown body {pt.body!r}; the bodies are "
+                            f"{sorted(bodies)}")
+            stray = set().union(*(sp.sympify(c).free_symbols for c in (*pt.local, pt.share)))
+            if len(pt.local) != 3 or stray - geometric:
+                _fail(mech, f"link weight {w.name}: a point needs three coordinates in the "
+                            f"parameters (stray: {sorted(map(str, stray - geometric))})")
+        if sp.simplify(sum(sp.sympify(pt.share) for pt in w.points) - 1) != 0:
+            _fail(mech, f"link weight {w.name}: the shares of its points must sum to 1")
 
 
 def _check_angle_joints(mech: Mechanism) -> None:

@@ -30,7 +30,17 @@ import sympy as sp
 from ..algebra import study_symbolic as ss
 from ..analyses.closure_dimension import ClosureDimension
 from ..analyses.pure_translation import PureTranslation
-from ..declaration import Closure, Parameter, PoseMap, Role, declare, joint, leg
+from ..declaration import (
+    Closure,
+    LinkWeight,
+    Parameter,
+    PoseMap,
+    Role,
+    WeightPoint,
+    declare,
+    joint,
+    leg,
+)
 
 NAME = "lamina_milling"
 R = {"real": True}
@@ -41,6 +51,8 @@ e1, e2, e3 = sp.symbols("e1 e2 e3", **R)  # passive, upper chain: J12, J13, J14
 b1, c1, s1 = sp.symbols("b1 c1 s1", **R)  # passive, bottom chain 1: J22, J23 (turn, slide)
 b2, c2, s2 = sp.symbols("b2 c2 s2", **R)  # passive, bottom chain 2: J32, J33
 x, y, z = sp.symbols("x y z", **R)  # H in the base frame (mm)
+G = sp.symbols("G1:8", **R)  # link weights (N), 003 Table 1
+l2, l4, l5, l8, l9 = sp.symbols("l2 l4 l5 l8 l9", **R)  # centres of gravity (mm)
 POSE = (x, y, z)
 A, P = Role.ACTIVE, Role.PASSIVE
 
@@ -96,6 +108,50 @@ PARAMETERS = (
     _table1("dy1", 45.5, "Delta y1: D's offset along Y0"),
     _table1("dy2", 24.0, "Delta y2 = |C H| along Y0"),
     _table1("dD", 136.3, "Delta D: D's height at L = 0"),
+    *(Parameter(f"G{k + 1}", v, "N", f"weight G{k + 1} of {what}", "003 Table 1",
+                domain="nonnegative")
+      for k, (v, what) in enumerate(((0.87, "the parallelogram's link EC"),
+                                     (0.74, "the active link DE with its carriage"),
+                                     (1.72, "link AF"), (1.87, "link OA (PA)"),
+                                     (1.59, "link BM"), (2.52, "link OB"),
+                                     (4.17, "the moving platform")))),
+    _table1("l2", 45.0, "centre of gravity of EC from C along c_y (towards E)"),
+    _table1("l4", 50.21, "centre of gravity of AF from F along f_y2 (towards A)"),
+    _table1("l5", 39.096, "centre of gravity of OA from O (the paper's P)"),
+    _table1("l8", 49.571, "centre of gravity of BM from M (chain 2's l4)"),
+    _table1("l9", 29.139, "centre of gravity of OB from O (chain 2's l5)"),
+)
+
+_ORIGIN = (0, 0, 0)
+# 003 Table 1 and Sect. 2.3 as read here (each reading in LinkWeight.reading); the bodies
+# are the generated LINKS: U.1 the carriage with DE (frame at (0, 0, L)), U.2 the top
+# transverse link (frame at E), U.3 the bottom transverse link (frame at C), 1.1 / 2.1 the
+# links OA / OB (frame at O, x towards A / B), 1.2 / 2.2 the links AF / BM (frame at A / B,
+# x towards F / M), "platform" the end effector's frame at H
+LINK_WEIGHTS = (
+    LinkWeight("G1", G[0], (WeightPoint("U.3", _ORIGIN, 1 - l2 / lEC),
+                            WeightPoint("U.2", _ORIGIN, l2 / lEC)),
+               "the parallelogram's long link EC (not a body of the chain: its centre of "
+               "gravity is the point l2 from C towards E of the segment C E)",
+               "l1 = 90 mm is |C E| = lEC and l2 = 45 mm the centre of gravity's distance "
+               "from C (003 eq. 18: 'distances from point E and the center of gravity to the "
+               "origin of the C coordinates'); 45 of 90 mm is the midpoint either way"),
+    LinkWeight("G2", G[1], (WeightPoint("U.1", (0, dy1 + lDE / 2, dD)),),
+               "the active link DE and its carriage (they only translate along Z0: the point "
+               "does not matter)", "no distance printed: the middle of DE"),
+    LinkWeight("G3", G[2], (WeightPoint("1.2", (lAF - l4, 0, 0)),),
+               "link AF", "l4 from F along f_y2 towards A (003 eq. 37-38; l3 = 90 mm is "
+               "|A F| = lAF)"),
+    LinkWeight("G4", G[3], (WeightPoint("1.1", (l5, 0, 0)),),
+               "link OA (the paper's PA)", "l5 from P = O (003 eq. 47; l6 = 90 mm is "
+               "|P A| = lOA)"),
+    LinkWeight("G5", G[4], (WeightPoint("2.2", (lBM - l8, 0, 0)),),
+               "link BM", "l8 from M towards B, chain 2's l4 (l7 = 90 mm is |B M| = lBM)"),
+    LinkWeight("G6", G[5], (WeightPoint("2.1", (l9, 0, 0)),),
+               "link OB", "l9 from O, chain 2's l5 (l10 = 90 mm is |O B| = lOB)"),
+    LinkWeight("G7", G[6], (WeightPoint("platform", _ORIGIN),),
+               "the moving platform", "no centre of gravity printed: at H (the platform only "
+               "translates, so every point of it moves alike)"),
 )
 
 MECHANISM = declare(
@@ -158,8 +214,9 @@ MECHANISM = declare(
                               title="Pure translation from the ideal (003 Sect. 2.1)"),
               ClosureDimension("mobility", "platform",
                                title="Mobility from the ideal (003 eq. 6)")),
+    link_weights=LINK_WEIGHTS,
     checks="bonered_alg.papers.p003_lamina_milling",
-    studies=("bonered_alg.studies.workspace_003",),
+    studies=("bonered_alg.studies.workspace_003", "bonered_alg.studies.statics_003"),
     # home: the middle of Table 2's ranges, theta1 = 38.75 deg, theta2 = 141.25 deg, L = 5 mm:
     # x = 0, y = 180 sin(38.75 deg), z from eq. (7) with C below E
     home=(0.0, 112.6662, 52.1958),

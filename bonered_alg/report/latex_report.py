@@ -12,6 +12,7 @@ import sympy as sp
 
 from ..chains.topology import loops, mobility_counts, topology
 from ..kinematics.rps_forward import DEGREE_BOUND, PAIRS
+from ..verification import NOISE_FLOOR
 from .algebra_record import FULL_TERMS, degrees, is_long, terms
 from .latex_util import broken_math, latex, matrix_math, prose, tex_escape
 
@@ -639,7 +640,9 @@ def section_verification(verdicts) -> list[str]:
            r"p{0.4\textwidth}}\toprule",
            r"reference & quantity & verdict & detail\\\midrule\endhead"]
     for v in verdicts:
-        err = "" if v.max_error is None else f" (max error {v.max_error:.2e})"
+        err = "" if v.max_error is None else (
+            f" (max error at most {v.max_error:.0e}: floating-point noise)"
+            if v.max_error == NOISE_FLOOR else f" (max error {v.max_error:.2e})")
         out.append(f"{tex_escape(v.ref)} & {prose(v.quantity)} & "
                    f"{VERDICT_TEX[v.verdict]}{err} & {prose(v.detail)}\\\\")
     out.append(r"\bottomrule\end{longtable}")

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from .compiled import FastPath
 from .model import ForwardKinematics, Model, RPSKernels
+from .statics import Statics
 from .status import (
     FORWARD_SINGULAR,
     INPUT_SINGULAR,
@@ -43,4 +44,4 @@ __all__ = ["API_VERSION", "FORWARD_SINGULAR", "INPUT_SINGULAR", "INVALID_INPUT",
            "FastPath", "JOINT_AT_INFINITY", "NO_REAL_SOLUTION", "NOT_SOLVED", "OK", "ON_BOUNDARY",
            "OUTSIDE_CHART",
            "PASSIVE_JOINT_LIMIT", "STATUS", "STROKE_LIMIT", "ForwardKinematics", "Model",
-           "RPSKernels", "UNVERIFIED", "require"]
+           "RPSKernels", "Statics", "UNVERIFIED", "require"]

@@ -14,6 +14,7 @@ import numpy
 
 from . import fk as fk_solver
 from . import inputs as check
+from . import statics
 from .backsubstitution import backsubstitute
 from .inputs import columns, stacked
 from .status import (
@@ -104,6 +105,8 @@ class Model:
     # indices of the joints given to users as angles: the algebra solves t = tan(q/2), the
     # public functions take and return q = 2 atan(t) (:meth:`public`, :meth:`algebraic`)
     angles: tuple[int, ...] = ()
+    # the static model (runtime.statics.Statics), where the declaration gives link weights
+    statics: object | None = None
 
     # ------------------------------------------------------------ angle joints
     def public(self, q):
@@ -511,6 +514,33 @@ class Model:
                 out[..., first:first + count, :] = values.reshape(shape + (count, 8))
             out /= numpy.linalg.norm(out[..., :4], axis=-1, keepdims=True)
         return out
+
+    def static_efforts(self, pose, load, mode=0, method="virtual_work", params=None):
+        """Actuator efforts (..., len(JOINTS)) holding the pose under ``load`` (..., 3, N,
+        base frame, at the end effector's origin) and the link weights, by virtual work or
+        by the free-body equilibrium of every body (:mod:`.statics`); NaN where the IK, its
+        Jacobian or the equilibrium is not defined."""
+        func = "static_efforts"
+        if method not in ("virtual_work", "free_body"):
+            raise ValueError(f"{self.mechanism}.{func}: method must be 'virtual_work' or "
+                             f"'free_body', got {method!r}")
+        if self.statics is None:
+            raise NotImplementedError(f"{self.mechanism}.{func}: the declaration gives no "
+                                      "link weights")
+        pose = check.pose(self, func, pose)
+        load = check.coordinates(self, func, load, ("Fx", "Fy", "Fz"), "load")
+        if not numpy.isfinite(load).all():
+            raise ValueError(f"{self.mechanism}.{func}: the load must be finite")
+        mode = check.mode(self, func, mode)
+        par = check.parameters(self, func, params or {})
+        shape = numpy.broadcast_shapes(pose.shape[:-1], load.shape[:-1])
+        pose = numpy.broadcast_to(pose, shape + pose.shape[-1:])
+        load = numpy.broadcast_to(load, shape + (3,))
+        q, passive = self._passive(pose, mode, par)
+        if method == "free_body":
+            return statics.free_body(self, pose, load, q, passive, par)
+        J, _ = self.jacobian_and_status(pose, mode, False, params, func)
+        return statics.efforts(self, pose, load, q, passive, J, par)
 
     def pose_twist(self, pose, params=None):
         pose = check.pose(self, "pose_twist", pose)
