@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: beae889de63979d9548a3ed844c30fe04935fee7e73206738303be6ed47fbc24
+ * Derivation hash: 3d39b664f38d2ac533c6bc0510f5119788b0432f15647b2bd87b015b87109d86
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "beae889de63979d9548a3ed844c30fe04935fee7e73206738303be6ed47fbc24";
+const char bonered_derivation_hash[] = "3d39b664f38d2ac533c6bc0510f5119788b0432f15647b2bd87b015b87109d86";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e30cfc77e7aa9e7dcf4f01c5c4386781d6518fc479ebaddd1d3f96c11151373e
+ * Derivation hash: 4be9814530186b32ba093ba835b2aed29942f7ce77f21b6a0f510e611f6b9691
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "e30cfc77e7aa9e7dcf4f01c5c4386781d6518fc479ebaddd1d3f96c11151373e";
+const char bonered_derivation_hash[] = "4be9814530186b32ba093ba835b2aed29942f7ce77f21b6a0f510e611f6b9691";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 13385f8666b87de36db604358c2e041832ea1640ecb7ae698f17c0d82d859668
+ * Derivation hash: 222a5a834bb76d11f410b69e78ac23e301fce2731aefe094cd4fcd020f218609
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "13385f8666b87de36db604358c2e041832ea1640ecb7ae698f17c0d82d859668";
+const char bonered_derivation_hash[] = "222a5a834bb76d11f410b69e78ac23e301fce2731aefe094cd4fcd020f218609";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 82faf024bf10fd0c4d2975cf83623908cf5201af652cd0f67fbd4f925b3d3cd2
+ * Derivation hash: 57ec93c89262b33fe5ac1925e7c6f2be6e288bee014dea75ce58d89600e17b3f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "82faf024bf10fd0c4d2975cf83623908cf5201af652cd0f67fbd4f925b3d3cd2";
+const char bonered_derivation_hash[] = "57ec93c89262b33fe5ac1925e7c6f2be6e288bee014dea75ce58d89600e17b3f";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1b9623bb62e75d5829995588906924a5e2ca673d117e23346827b1542f96ea1f
+ * Derivation hash: 87e485685dd04be82096eb4715fa06475e3abc34e7f2750f1322b1f88940cb5e
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "1b9623bb62e75d5829995588906924a5e2ca673d117e23346827b1542f96ea1f";
+const char bonered_derivation_hash[] = "87e485685dd04be82096eb4715fa06475e3abc34e7f2750f1322b1f88940cb5e";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

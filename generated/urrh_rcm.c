@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0773e10060e82e990f0511ba9e6ab0046b5ece7593be7c6f57e9a5f6cdc3774c
+ * Derivation hash: f4fd22a5e9732e037dc5f46c47e3182a362a65e8fbbe14901fe47f1e413bfe94
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "0773e10060e82e990f0511ba9e6ab0046b5ece7593be7c6f57e9a5f6cdc3774c";
+const char bonered_derivation_hash[] = "f4fd22a5e9732e037dc5f46c47e3182a362a65e8fbbe14901fe47f1e413bfe94";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -115,3 +115,14 @@ def test_declaration_of_link_weights_is_checked():
     bad_share = dataclasses.replace(w, points=(WeightPoint("U.2", (0, 0, 0), 0.5),))
     with pytest.raises(MechanismDefinitionError, match="sum to 1"):
         validate(dataclasses.replace(mech, link_weights=(bad_share,)))
+
+
+def test_link_weights_need_one_closure_on_the_fixed_base():
+    """Stacked closures (a leg standing on another closure's platform) are refused with a
+    clear error rather than given a wrong model."""
+    from bonered_alg.mechanisms import planar_tripod as pt
+
+    weight = decl.MECHANISM.link_weights[-1]  # on the platform
+    mech = dataclasses.replace(pt.MECHANISM, link_weights=(weight,))
+    with pytest.raises(MechanismDefinitionError, match="one actuated closure"):
+        validate(mech)

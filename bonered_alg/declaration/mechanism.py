@@ -308,6 +308,13 @@ def _check_link_weights(mech: Mechanism) -> None:
     if mech.pose.end_effector is None:
         _fail(mech, "link_weights need the pose map's end_effector (the load acts at its "
                     "origin)")
+    closures = mech.actuated_closures
+    if len(closures) != 1 or any(c.base != "base" or leg.base not in (None, "base")
+                                 or leg.mount is not None
+                                 for c in closures for leg in c.legs):
+        _fail(mech, "link_weights: the static model handles one actuated closure whose legs "
+                    "stand on the fixed base (stacked closures and mounted legs are not "
+                    "supported yet)")
     bodies = set(body_names(mech)) | {PLATFORM}
     geometric = set(mech.geometric)
     coords = {s for c in mech.actuated_closures for s in c.pose}
