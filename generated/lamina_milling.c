@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3d39b664f38d2ac533c6bc0510f5119788b0432f15647b2bd87b015b87109d86
+ * Derivation hash: 09cafcb50ba8590815227edc8c1d0063a263dbdf30a20c997896ea1861a05c35
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "3d39b664f38d2ac533c6bc0510f5119788b0432f15647b2bd87b015b87109d86";
+const char bonered_derivation_hash[] = "09cafcb50ba8590815227edc8c1d0063a263dbdf30a20c997896ea1861a05c35";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4be9814530186b32ba093ba835b2aed29942f7ce77f21b6a0f510e611f6b9691
+ * Derivation hash: c6f6818d0632ce8587222951019f34d2cdbe57ee1c8a5013d634c52b766d2526
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "4be9814530186b32ba093ba835b2aed29942f7ce77f21b6a0f510e611f6b9691";
+const char bonered_derivation_hash[] = "c6f6818d0632ce8587222951019f34d2cdbe57ee1c8a5013d634c52b766d2526";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 222a5a834bb76d11f410b69e78ac23e301fce2731aefe094cd4fcd020f218609
+ * Derivation hash: 91ae24c111f537dfa29dc5f5c455f49d1aed9667942ae41dcfd19d8a660b1fa3
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "222a5a834bb76d11f410b69e78ac23e301fce2731aefe094cd4fcd020f218609";
+const char bonered_derivation_hash[] = "91ae24c111f537dfa29dc5f5c455f49d1aed9667942ae41dcfd19d8a660b1fa3";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 57ec93c89262b33fe5ac1925e7c6f2be6e288bee014dea75ce58d89600e17b3f
+ * Derivation hash: 7dbc5585dc8714565c2768f78ccc9d272d5d0595ee8098c45dc2c77fb5e0893c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "57ec93c89262b33fe5ac1925e7c6f2be6e288bee014dea75ce58d89600e17b3f";
+const char bonered_derivation_hash[] = "7dbc5585dc8714565c2768f78ccc9d272d5d0595ee8098c45dc2c77fb5e0893c";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 87e485685dd04be82096eb4715fa06475e3abc34e7f2750f1322b1f88940cb5e
+ * Derivation hash: 25c53e210dc55359e5e49d083bc0eb08c61708f379aa9f2c973c1f6ff92ff284
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "87e485685dd04be82096eb4715fa06475e3abc34e7f2750f1322b1f88940cb5e";
+const char bonered_derivation_hash[] = "25c53e210dc55359e5e49d083bc0eb08c61708f379aa9f2c973c1f6ff92ff284";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f4fd22a5e9732e037dc5f46c47e3182a362a65e8fbbe14901fe47f1e413bfe94
+ * Derivation hash: ada20df2c7b6b4204f44b765f2e5d0a7fde4fa7d4e11f997915f62d1f131e4b0
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "f4fd22a5e9732e037dc5f46c47e3182a362a65e8fbbe14901fe47f1e413bfe94";
+const char bonered_derivation_hash[] = "ada20df2c7b6b4204f44b765f2e5d0a7fde4fa7d4e11f997915f62d1f131e4b0";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

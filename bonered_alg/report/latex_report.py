@@ -59,8 +59,9 @@ def _section_overview(record) -> list[str]:
             for q in m.joints)),
         ("pose", ", ".join(f"${latex(c)}$ [{tex_escape(u)}]"
                            for c, u in zip(m.pose.coordinates, m.pose.units))),
-        ("mobility", f"$M = {sum(c.mobility for c in counts)}$ (Kutzbach--Gr\\\"ubler, "
-         "per closure in Sect.~1)"),
+        ("mobility", f"$M = {sum(c.mobility for c in counts)}$ (the classical "
+         "Kutzbach--Gr\\\"ubler count, per closure in Sect.~1; the screw-theory count and "
+         "the ideal's dimension are in the section on mobility)"),
         ("working modes (IK)", f"{d.modes}"),
         ("assembly modes (FK)", str(fk_modes) if fk_modes else
          "not generated: " + tex_escape(d.fk_note)),

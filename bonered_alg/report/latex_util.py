@@ -94,8 +94,34 @@ def prose(text: str) -> str:
     return " ".join(words)
 
 
+def _plain_symbol(name: str) -> str | None:
+    """The LaTeX of a symbol whose base name ends in one of sympy's modifiers (``lBM``
+    would print as a bold l, ``xbar`` as x with a bar): the name as written, with its
+    sub- and superscripts; None for the others (sympy's own printing)."""
+    from sympy.printing.conventions import split_super_sub
+    from sympy.printing.latex import modifier_dict
+
+    base, sups, subs = split_super_sub(name)
+    low = base.lower()
+    if not any(low.endswith(k) and len(base) > len(k) for k in modifier_dict):
+        return None
+    out = base
+    if subs:
+        out += "_{" + " ".join(subs) + "}"
+    if sups:
+        out += "^{" + " ".join(sups) + "}"
+    return out
+
+
 def latex(expr) -> str:
-    return sp.latex(sp.sympify(expr))
+    e = sp.sympify(expr)
+    names = {}
+    for sym in getattr(e, "free_symbols", ()):
+        if isinstance(sym, sp.Symbol):
+            plain = _plain_symbol(sym.name)
+            if plain is not None:
+                names[sym] = plain
+    return sp.latex(e, symbol_names=names) if names else sp.latex(e)
 
 
 _COMMAND = re.compile(r"\\([a-zA-Z]+|.)")
@@ -185,7 +211,7 @@ def _sum_lines(terms: list, width: float) -> list[str]:
     lines: list[str] = []
     current = ""
     for k, term in enumerate(terms):
-        sign, body = _signed(sp.latex(term))
+        sign, body = _signed(latex(term))
         lead = ("-" if sign == "-" else "") if k == 0 else sign + " "
         piece = lead + body
         if visible_width(piece) > width:  # a long product or power: break it
@@ -207,7 +233,7 @@ def _sum_lines(terms: list, width: float) -> list[str]:
 
 
 def _factor_tex(f) -> str:
-    tex = sp.latex(f)
+    tex = latex(f)
     if isinstance(f, sp.Add):
         return rf"\left({tex}\right)"
     return tex
@@ -225,10 +251,10 @@ def _product_lines(expr: sp.Mul, width: float) -> list[str]:
     if coeff == -1:
         current = "-"
     elif coeff != 1:
-        current = sp.latex(coeff)
+        current = latex(coeff)
     if denom:
         den = sp.Mul(*denom)
-        current += rf"\frac{{1}}{{{sp.latex(den)}}}"
+        current += rf"\frac{{1}}{{{latex(den)}}}"
 
     def flush():
         nonlocal current
@@ -247,7 +273,7 @@ def _product_lines(expr: sp.Mul, width: float) -> list[str]:
             inner = _sum_lines(list(base.as_ordered_terms()), width - 3)
             inner[0] = (current if current == "-" else "") + r"\bigl(" + inner[0]
             current = ""
-            tail = r"\bigr)" + (f"^{{{sp.latex(exp)}}}" if exp is not None else "")
+            tail = r"\bigr)" + (f"^{{{latex(exp)}}}" if exp is not None else "")
             lines += inner[:-1]
             current = inner[-1] + tail
             continue
@@ -260,7 +286,7 @@ def _product_lines(expr: sp.Mul, width: float) -> list[str]:
 
 def _lines(expr, width: float = LINE_WIDTH) -> list[str]:
     """The LaTeX of ``expr`` in lines of at most about ``width`` glyphs."""
-    tex = sp.latex(expr)
+    tex = latex(expr)
     if visible_width(tex) <= width:
         return [tex]
     if isinstance(expr, sp.Add):
@@ -270,7 +296,7 @@ def _lines(expr, width: float = LINE_WIDTH) -> list[str]:
     if isinstance(expr, sp.Pow) and isinstance(expr.base, sp.Add):
         inner = _sum_lines(list(expr.base.as_ordered_terms()), width - 3)
         inner[0] = r"\bigl(" + inner[0]
-        inner[-1] += r"\bigr)^{" + sp.latex(expr.exp) + "}"
+        inner[-1] += r"\bigr)^{" + latex(expr.exp) + "}"
         return inner
     return [tex]  # an atom, a function call: nothing to break at
 
@@ -291,7 +317,7 @@ def broken_math(lhs: str, expr, width: float = LINE_WIDTH) -> str:
 def matrix_math(lhs: str, matrix, width: float = LINE_WIDTH) -> str:
     """A matrix as ``bmatrix`` where it fits the line (the widest entry of each column, plus
     the column gaps), else entry by entry as ``(lhs)_{ij}``."""
-    cells = [[sp.latex(matrix[i, j]) for j in range(matrix.cols)] for i in range(matrix.rows)]
+    cells = [[latex(matrix[i, j]) for j in range(matrix.cols)] for i in range(matrix.rows)]
     wide = sum(max(visible_width(cells[i][j]) for i in range(matrix.rows)) + 2.0
                for j in range(matrix.cols))
     if wide + visible_width(lhs) + 4 <= width and matrix.rows <= 12:
