@@ -3,15 +3,15 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 09cafcb50ba8590815227edc8c1d0063a263dbdf30a20c997896ea1861a05c35
+ * Derivation hash: f78b5a642de0a8785ec0ac3550f1e79354f96c8ab3af525353c53712ae73ea46
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "09cafcb50ba8590815227edc8c1d0063a263dbdf30a20c997896ea1861a05c35";
+const char bonered_derivation_hash[] = "f78b5a642de0a8785ec0ac3550f1e79354f96c8ab3af525353c53712ae73ea46";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
-static inline void _study(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+BF_INLINE void _study(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     out[0] = v_x;
     out[1] = v_y;
@@ -19,7 +19,7 @@ static inline void _study(double v_x, double v_y, double v_z, double v_lOA, doub
 }
 
 /* Coefficients (A, B, C) of the generator solved for L (from platform/U). */
-static inline void _step0_L(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+BF_INLINE void _step0_L(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_dy1;
     const double v__c1 = 2.0*v_y;
@@ -29,7 +29,7 @@ static inline void _step0_L(double v_x, double v_y, double v_z, double v_lOA, do
 }
 
 /* Coefficients (A, B, C) of the generator solved for t1 (from platform/1). */
-static inline void _step1_t1(double v_x, double v_y, double v_z, double v_L, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+BF_INLINE void _step1_t1(double v_x, double v_y, double v_z, double v_L, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_lOA*v_x;
     const double v__c1 = -(v_lAF*v_lAF) + (v_lOA*v_lOA) + (v_x*v_x) + (v_y*v_y);
@@ -39,7 +39,7 @@ static inline void _step1_t1(double v_x, double v_y, double v_z, double v_L, dou
 }
 
 /* Coefficients (A, B, C) of the generator solved for t2 (from platform/2). */
-static inline void _step2_t2(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+BF_INLINE void _step2_t2(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_lOB*v_x;
     const double v__c1 = -(v_lBM*v_lBM) + (v_lOB*v_lOB) + (v_x*v_x) + (v_y*v_y);
@@ -49,7 +49,7 @@ static inline void _step2_t2(double v_x, double v_y, double v_z, double v_L, dou
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
-static inline void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_L + 2.0*v_dD - 2.0*v_z;
     const double v__c1 = 2.0*v_t1;
@@ -89,51 +89,100 @@ static inline void _jac(double v_x, double v_y, double v_z, double v_L, double v
     out[14] = 0.0;
 }
 
-static void solve_one(const double *restrict p, const double *restrict par, int mode,
-                      int limits, double *restrict q, signed char *restrict status_out,
-                      double *restrict jac)
+static void solve_block(int m, const double *restrict pose, const double *restrict par,
+                        int mode, int limits, double *restrict q_out,
+                        signed char *restrict status_out, double *restrict jac_out)
 {
-    double s[3], c[3], r[3];
-    _study(p[0], p[1], p[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], s);
-    int status = bf_all_finite(s, 3) ? BF_OK : BF_INVALID_INPUT;
-    int failed = 0;
+    double P[3][BF_BLOCK], S[3][BF_BLOCK], R[3][BF_BLOCK], Q[3][BF_BLOCK];
+    int ST[BF_BLOCK], FL[BF_BLOCK];
     (void)mode;
-    if (failed) { r[0] = NAN; } else {
-        _step0_L(s[0], s[1], s[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
-        r[0] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        P[0][i] = pose[i * 3 + 0];
+        P[1][i] = pose[i * 3 + 1];
+        P[2][i] = pose[i * 3 + 2];
     }
-    if (failed) { r[1] = NAN; } else {
-        _step1_t1(s[0], s[1], s[2], r[0], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
-        r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double s[3];
+        _study(P[0][i], P[1][i], P[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], s);
+        S[0][i] = s[0];
+        S[1][i] = s[1];
+        S[2][i] = s[2];
+        ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2])));
+        FL[i] = 0;
     }
-    if (failed) { r[2] = NAN; } else {
-        _step2_t2(s[0], s[1], s[2], r[0], r[1], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
-        r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step0_L(S[0][i], S[1][i], S[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
+        R[0][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    q[0] = failed ? NAN : r[0];
-    q[1] = failed ? NAN : r[1];
-    q[2] = failed ? NAN : r[2];
-    if (!bf_all_finite(p, 3))
-        status = BF_INVALID_INPUT;
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step1_t1(S[0][i], S[1][i], S[2][i], R[0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
+        R[1][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
+    }
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step2_t2(S[0][i], S[1][i], S[2][i], R[0][i], R[1][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
+        R[2][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
+    }
+    for (int i = 0; i < m; i++) {
+        int failed = FL[i];
+        Q[0][i] = failed ? NAN : R[0][i];
+        Q[1][i] = failed ? NAN : R[1][i];
+        Q[2][i] = failed ? NAN : R[2][i];
+        ST[i] = BF_SET(ST[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i])), BF_INVALID_INPUT);
+    }
     (void)limits;
-    if (jac) {
-        double v[15];
-        _jac(p[0], p[1], p[2], q[0], q[1], q[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], v);
-        int singular = bf_pivots_singular(v, 3) || status == BF_ON_BOUNDARY;
-        for (int k = 0; k < 9; k++)
-            jac[k] = singular ? NAN : v[6 + k];
-        if ((status == BF_OK || status == BF_ON_BOUNDARY) && singular)
-            status = BF_INPUT_SINGULAR;
+    if (jac_out) {
+        double J[9][BF_BLOCK];
+        for (int i = 0; i < m; i++) {
+            double v[15];
+            _jac(P[0][i], P[1][i], P[2][i], Q[0][i], Q[1][i], Q[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], v);
+            int status = ST[i];
+            int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[3]) | !(fabs(v[1]) > BF_DET_RTOL * v[4]) | !(fabs(v[2]) > BF_DET_RTOL * v[5])) | (status == BF_ON_BOUNDARY);
+            J[0][i] = singular ? NAN : v[6];
+            J[1][i] = singular ? NAN : v[7];
+            J[2][i] = singular ? NAN : v[8];
+            J[3][i] = singular ? NAN : v[9];
+            J[4][i] = singular ? NAN : v[10];
+            J[5][i] = singular ? NAN : v[11];
+            J[6][i] = singular ? NAN : v[12];
+            J[7][i] = singular ? NAN : v[13];
+            J[8][i] = singular ? NAN : v[14];
+            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
+        }
+        for (int i = 0; i < m; i++)
+            for (int k = 0; k < 9; k++)
+                jac_out[i * 9 + k] = J[k][i];
     }
-    *status_out = (signed char)status;
+    for (int i = 0; i < m; i++) {
+        q_out[i * 3 + 0] = Q[0][i];
+        q_out[i * 3 + 1] = Q[1][i];
+        q_out[i * 3 + 2] = Q[2][i];
+        status_out[i] = (signed char)ST[i];
+    }
 }
 
 /* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x
  * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */
-void bonered_solve(long n, const double *pose, const double *par, int mode, int limits,
-                   double *q, signed char *status, double *jac)
+void bonered_solve(long n, const double *pose, const double *par_in, int mode,
+                   int limits, double *q, signed char *status, double *jac)
 {
-    for (long i = 0; i < n; i++)
-        solve_one(pose + i * 3, par, mode, limits, q + i * 3, status + i,
-                  jac ? jac + i * 9 : 0);
+    double par[21];
+    for (int k = 0; k < 21; k++)
+        par[k] = par_in[k];
+    for (long lo = 0; lo < n; lo += BF_BLOCK) {
+        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
+        solve_block(m, pose + lo * 3, par, mode, limits, q + lo * 3,
+                    status + lo, jac ? jac + lo * 9 : 0);
+    }
 }

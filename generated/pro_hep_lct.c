@@ -3,15 +3,15 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 91ae24c111f537dfa29dc5f5c455f49d1aed9667942ae41dcfd19d8a660b1fa3
+ * Derivation hash: a6a1c1ad6c104702a48a837eff185e48241bf3433aee6fd0cffb43e50e3c76d7
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "91ae24c111f537dfa29dc5f5c455f49d1aed9667942ae41dcfd19d8a660b1fa3";
+const char bonered_derivation_hash[] = "a6a1c1ad6c104702a48a837eff185e48241bf3433aee6fd0cffb43e50e3c76d7";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
-static inline void _study(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+BF_INLINE void _study(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     out[0] = -0.5*v_Xu;
     out[1] = -0.5*v_Yu;
@@ -20,7 +20,7 @@ static inline void _study(double v_Xu, double v_Yu, double v_Xd, double v_Yd, do
 }
 
 /* Coefficients (A, B, C) of the generator solved for q5 (from Pu/U). */
-static inline void _step0_q5(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+BF_INLINE void _step0_q5(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     out[0] = 0.0;
     out[1] = 1.0;
@@ -28,7 +28,7 @@ static inline void _step0_q5(double v_yu1, double v_yu2, double v_yd1, double v_
 }
 
 /* Coefficients (A, B, C) of the generator solved for q4 (from Pu/U). */
-static inline void _step1_q4(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+BF_INLINE void _step1_q4(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     out[0] = -1.0;
     out[1] = 2.0*v_q5;
@@ -36,7 +36,7 @@ static inline void _step1_q4(double v_yu1, double v_yu2, double v_yd1, double v_
 }
 
 /* Coefficients (A, B, C) of the generator solved for t1 (from Pd/D1). */
-static inline void _step2_t1(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_q4, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+BF_INLINE void _step2_t1(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_q4, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     const double v__c0 = 16.0*v_l1*v_yd1;
     const double v__c1 = (v_d*v_d) + 8.0*v_d*v_yd2 + 4.0*(v_l1*v_l1) - 4.0*(v_l2*v_l2) + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
@@ -46,7 +46,7 @@ static inline void _step2_t1(double v_yu1, double v_yu2, double v_yd1, double v_
 }
 
 /* Coefficients (A, B, C) of the generator solved for w1 (from Pd/D2). */
-static inline void _step3_w1(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_q4, double v_t1, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+BF_INLINE void _step3_w1(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_q4, double v_t1, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     const double v__c0 = 16.0*v_l3*v_yd1;
     const double v__c1 = (v_d*v_d) - 4.0*v_d*v_lq4d - 8.0*v_d*v_yd2 + 4.0*(v_l3*v_l3) - 4.0*(v_l4*v_l4) + 4.0*(v_lq4d*v_lq4d) + 16.0*v_lq4d*v_yd2 + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
@@ -56,7 +56,7 @@ static inline void _step3_w1(double v_yu1, double v_yu2, double v_yd1, double v_
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
-static inline void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v_t1, double v_w1, double v_q4, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+BF_INLINE void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v_t1, double v_w1, double v_q4, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     const double v__c0 = -2.0*v_q4 + 2.0*v_q5;
     const double v__c1 = 8.0*v_l1;
@@ -111,56 +111,119 @@ static inline void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, doub
     out[23] = 0.0;
 }
 
-static void solve_one(const double *restrict p, const double *restrict par, int mode,
-                      int limits, double *restrict q, signed char *restrict status_out,
-                      double *restrict jac)
+static void solve_block(int m, const double *restrict pose, const double *restrict par,
+                        int mode, int limits, double *restrict q_out,
+                        signed char *restrict status_out, double *restrict jac_out)
 {
-    double s[4], c[3], r[4];
-    _study(p[0], p[1], p[2], p[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], s);
-    int status = bf_all_finite(s, 4) ? BF_OK : BF_INVALID_INPUT;
-    int failed = 0;
+    double P[4][BF_BLOCK], S[4][BF_BLOCK], R[4][BF_BLOCK], Q[4][BF_BLOCK];
+    int ST[BF_BLOCK], FL[BF_BLOCK];
     (void)mode;
-    if (failed) { r[0] = NAN; } else {
-        _step0_q5(s[0], s[1], s[2], s[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-        r[0] = bf_linear(c[1], c[2], &status, &failed);
+    for (int i = 0; i < m; i++) {
+        P[0][i] = pose[i * 4 + 0];
+        P[1][i] = pose[i * 4 + 1];
+        P[2][i] = pose[i * 4 + 2];
+        P[3][i] = pose[i * 4 + 3];
     }
-    if (failed) { r[1] = NAN; } else {
-        _step1_q4(s[0], s[1], s[2], s[3], r[0], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-        r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double s[4];
+        _study(P[0][i], P[1][i], P[2][i], P[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], s);
+        S[0][i] = s[0];
+        S[1][i] = s[1];
+        S[2][i] = s[2];
+        S[3][i] = s[3];
+        ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3])));
+        FL[i] = 0;
     }
-    if (failed) { r[2] = NAN; } else {
-        _step2_t1(s[0], s[1], s[2], s[3], r[0], r[1], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-        r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step0_q5(S[0][i], S[1][i], S[2][i], S[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        R[0][i] = bf_linear(c[1], c[2], &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    if (failed) { r[3] = NAN; } else {
-        _step3_w1(s[0], s[1], s[2], s[3], r[0], r[1], r[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-        r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step1_q4(S[0][i], S[1][i], S[2][i], S[3][i], R[0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        R[1][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    q[3] = failed ? NAN : r[0];
-    q[2] = failed ? NAN : r[1];
-    q[0] = failed ? NAN : r[2];
-    q[1] = failed ? NAN : r[3];
-    if (!bf_all_finite(p, 4))
-        status = BF_INVALID_INPUT;
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step2_t1(S[0][i], S[1][i], S[2][i], S[3][i], R[0][i], R[1][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        R[2][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
+    }
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step3_w1(S[0][i], S[1][i], S[2][i], S[3][i], R[0][i], R[1][i], R[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        R[3][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
+    }
+    for (int i = 0; i < m; i++) {
+        int failed = FL[i];
+        Q[3][i] = failed ? NAN : R[0][i];
+        Q[2][i] = failed ? NAN : R[1][i];
+        Q[0][i] = failed ? NAN : R[2][i];
+        Q[1][i] = failed ? NAN : R[3][i];
+        ST[i] = BF_SET(ST[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i]) & BF_FIN(P[3][i])), BF_INVALID_INPUT);
+    }
     (void)limits;
-    if (jac) {
-        double v[24];
-        _jac(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
-        int singular = bf_pivots_singular(v, 4) || status == BF_ON_BOUNDARY;
-        for (int k = 0; k < 16; k++)
-            jac[k] = singular ? NAN : v[8 + k];
-        if ((status == BF_OK || status == BF_ON_BOUNDARY) && singular)
-            status = BF_INPUT_SINGULAR;
+    if (jac_out) {
+        double J[16][BF_BLOCK];
+        for (int i = 0; i < m; i++) {
+            double v[24];
+            _jac(P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
+            int status = ST[i];
+            int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[4]) | !(fabs(v[1]) > BF_DET_RTOL * v[5]) | !(fabs(v[2]) > BF_DET_RTOL * v[6]) | !(fabs(v[3]) > BF_DET_RTOL * v[7])) | (status == BF_ON_BOUNDARY);
+            J[0][i] = singular ? NAN : v[8];
+            J[1][i] = singular ? NAN : v[9];
+            J[2][i] = singular ? NAN : v[10];
+            J[3][i] = singular ? NAN : v[11];
+            J[4][i] = singular ? NAN : v[12];
+            J[5][i] = singular ? NAN : v[13];
+            J[6][i] = singular ? NAN : v[14];
+            J[7][i] = singular ? NAN : v[15];
+            J[8][i] = singular ? NAN : v[16];
+            J[9][i] = singular ? NAN : v[17];
+            J[10][i] = singular ? NAN : v[18];
+            J[11][i] = singular ? NAN : v[19];
+            J[12][i] = singular ? NAN : v[20];
+            J[13][i] = singular ? NAN : v[21];
+            J[14][i] = singular ? NAN : v[22];
+            J[15][i] = singular ? NAN : v[23];
+            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
+        }
+        for (int i = 0; i < m; i++)
+            for (int k = 0; k < 16; k++)
+                jac_out[i * 16 + k] = J[k][i];
     }
-    *status_out = (signed char)status;
+    for (int i = 0; i < m; i++) {
+        q_out[i * 4 + 0] = Q[0][i];
+        q_out[i * 4 + 1] = Q[1][i];
+        q_out[i * 4 + 2] = Q[2][i];
+        q_out[i * 4 + 3] = Q[3][i];
+        status_out[i] = (signed char)ST[i];
+    }
 }
 
 /* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x
  * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */
-void bonered_solve(long n, const double *pose, const double *par, int mode, int limits,
-                   double *q, signed char *status, double *jac)
+void bonered_solve(long n, const double *pose, const double *par_in, int mode,
+                   int limits, double *q, signed char *status, double *jac)
 {
-    for (long i = 0; i < n; i++)
-        solve_one(pose + i * 4, par, mode, limits, q + i * 4, status + i,
-                  jac ? jac + i * 16 : 0);
+    double par[11];
+    for (int k = 0; k < 11; k++)
+        par[k] = par_in[k];
+    for (long lo = 0; lo < n; lo += BF_BLOCK) {
+        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
+        solve_block(m, pose + lo * 4, par, mode, limits, q + lo * 4,
+                    status + lo, jac ? jac + lo * 16 : 0);
+    }
 }

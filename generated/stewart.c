@@ -3,15 +3,15 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7dbc5585dc8714565c2768f78ccc9d272d5d0595ee8098c45dc2c77fb5e0893c
+ * Derivation hash: 4ee7c2c69272dd27b78f77fd1d020a6c38af637e735b0853b7e9b7b20bd1293a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "7dbc5585dc8714565c2768f78ccc9d272d5d0595ee8098c45dc2c77fb5e0893c";
+const char bonered_derivation_hash[] = "4ee7c2c69272dd27b78f77fd1d020a6c38af637e735b0853b7e9b7b20bd1293a";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
-static inline void _study(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _study(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = tan((0.5)*v_alpha);
     const double v__c1 = tan((0.5)*v_beta);
@@ -34,7 +34,7 @@ static inline void _study(double v_x, double v_y, double v_z, double v_alpha, do
 }
 
 /* Coefficients (A, B, C) of the generator solved for q2 (from P/L2). */
-static inline void _step0_q2(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _step0_q2(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = (v_tb*v_tb);
     const double v__c1 = (v_ta*v_ta);
@@ -66,7 +66,7 @@ static inline void _step0_q2(double v_x_1, double v_x_2, double v_x_3, double v_
 }
 
 /* Coefficients (A, B, C) of the generator solved for q5 (from P/L5). */
-static inline void _step1_q5(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _step1_q5(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = (v_ta*v_ta);
     const double v__c1 = (v_tb*v_tb);
@@ -97,7 +97,7 @@ static inline void _step1_q5(double v_x_1, double v_x_2, double v_x_3, double v_
 }
 
 /* Coefficients (A, B, C) of the generator solved for q1 (from P/L1). */
-static inline void _step2_q1(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_q5, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _step2_q1(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_q5, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = (v_ta*v_ta);
     const double v__c1 = (v_tb*v_tb);
@@ -135,7 +135,7 @@ static inline void _step2_q1(double v_x_1, double v_x_2, double v_x_3, double v_
 }
 
 /* Coefficients (A, B, C) of the generator solved for q4 (from P/L4). */
-static inline void _step3_q4(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_q5, double v_q1, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _step3_q4(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_q5, double v_q1, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = (v_ta*v_ta);
     const double v__c1 = (v_tb*v_tb);
@@ -170,7 +170,7 @@ static inline void _step3_q4(double v_x_1, double v_x_2, double v_x_3, double v_
 }
 
 /* Coefficients (A, B, C) of the generator solved for q3 (from P/L3). */
-static inline void _step4_q3(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_q5, double v_q1, double v_q4, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _step4_q3(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_q5, double v_q1, double v_q4, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = 1.7320508075688772;
     const double v__c1 = (v_ta*v_ta);
@@ -199,7 +199,7 @@ static inline void _step4_q3(double v_x_1, double v_x_2, double v_x_3, double v_
 }
 
 /* Coefficients (A, B, C) of the generator solved for q6 (from P/L6). */
-static inline void _step5_q6(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_q5, double v_q1, double v_q4, double v_q3, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _step5_q6(double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q2, double v_q5, double v_q1, double v_q4, double v_q3, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = 1.7320508075688772;
     const double v__c1 = (v_ta*v_ta);
@@ -229,7 +229,7 @@ static inline void _step5_q6(double v_x_1, double v_x_2, double v_x_3, double v_
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
-static inline void _jac(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = (v_tb*v_tb);
     const double v__c1 = (v_ta*v_ta);
@@ -754,7 +754,7 @@ static inline void _jac(double v_x, double v_y, double v_z, double v_alpha, doub
 }
 
 /* Quantities bounded by LIMITS (joint strokes, passive angles). */
-static inline void _limit_values(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = 210.0*v_z;
     const double v__c1 = 2.0*v_rb;
@@ -896,96 +896,199 @@ static inline void _limit_values(double v_x, double v_y, double v_z, double v_al
     out[17] = acos(v__c119*(v__c114*v__c55 + v__c116*(v__c114*v__c40 + v__c117*v__c48 - v__c118*v__c8) + v__c117*v__c56 + v__c118*v__c54 + v__c98*(v__c114*v__c37 + v__c117*v__c50 + v__c118*v__c18)));
 }
 
-static void solve_one(const double *restrict p, const double *restrict par, int mode,
-                      int limits, double *restrict q, signed char *restrict status_out,
-                      double *restrict jac)
+static void solve_block(int m, const double *restrict pose, const double *restrict par,
+                        int mode, int limits, double *restrict q_out,
+                        signed char *restrict status_out, double *restrict jac_out)
 {
-    double s[7], c[3], r[6];
-    _study(p[0], p[1], p[2], p[3], p[4], p[5], par[0], par[1], par[2], par[3], s);
-    int status = bf_all_finite(s, 7) ? BF_OK : BF_INVALID_INPUT;
-    int failed = 0;
+    double P[6][BF_BLOCK], S[7][BF_BLOCK], R[6][BF_BLOCK], Q[6][BF_BLOCK];
+    int ST[BF_BLOCK], FL[BF_BLOCK];
     (void)mode;
-    if (failed) { r[0] = NAN; } else {
-        _step0_q2(s[0], s[1], s[2], s[3], s[4], s[5], s[6], par[0], par[1], par[2], par[3], c);
-        r[0] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        P[0][i] = pose[i * 6 + 0];
+        P[1][i] = pose[i * 6 + 1];
+        P[2][i] = pose[i * 6 + 2];
+        P[3][i] = pose[i * 6 + 3];
+        P[4][i] = pose[i * 6 + 4];
+        P[5][i] = pose[i * 6 + 5];
     }
-    if (failed) { r[1] = NAN; } else {
-        _step1_q5(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], par[0], par[1], par[2], par[3], c);
-        r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double s[7];
+        _study(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], par[2], par[3], s);
+        S[0][i] = s[0];
+        S[1][i] = s[1];
+        S[2][i] = s[2];
+        S[3][i] = s[3];
+        S[4][i] = s[4];
+        S[5][i] = s[5];
+        S[6][i] = s[6];
+        ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3]) & BF_FIN(s[4]) & BF_FIN(s[5]) & BF_FIN(s[6])));
+        FL[i] = 0;
     }
-    if (failed) { r[2] = NAN; } else {
-        _step2_q1(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], par[0], par[1], par[2], par[3], c);
-        r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step0_q2(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], par[0], par[1], par[2], par[3], c);
+        R[0][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    if (failed) { r[3] = NAN; } else {
-        _step3_q4(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], par[0], par[1], par[2], par[3], c);
-        r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 3) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step1_q5(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], R[0][i], par[0], par[1], par[2], par[3], c);
+        R[1][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    if (failed) { r[4] = NAN; } else {
-        _step4_q3(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], r[3], par[0], par[1], par[2], par[3], c);
-        r[4] = bf_quadratic(c[0], c[1], c[2], (mode >> 4) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step2_q1(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], R[0][i], R[1][i], par[0], par[1], par[2], par[3], c);
+        R[2][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    if (failed) { r[5] = NAN; } else {
-        _step5_q6(s[0], s[1], s[2], s[3], s[4], s[5], s[6], r[0], r[1], r[2], r[3], r[4], par[0], par[1], par[2], par[3], c);
-        r[5] = bf_quadratic(c[0], c[1], c[2], (mode >> 5) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step3_q4(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], R[0][i], R[1][i], R[2][i], par[0], par[1], par[2], par[3], c);
+        R[3][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 3) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    q[1] = failed ? NAN : r[0];
-    q[4] = failed ? NAN : r[1];
-    q[0] = failed ? NAN : r[2];
-    q[3] = failed ? NAN : r[3];
-    q[2] = failed ? NAN : r[4];
-    q[5] = failed ? NAN : r[5];
-    if (!bf_all_finite(p, 6))
-        status = BF_INVALID_INPUT;
-    if (limits && bf_all_finite(q, 6)) {
-        double v[18];
-        _limit_values(p[0], p[1], p[2], p[3], p[4], p[5], q[0], q[1], q[2], q[3], q[4], q[5], par[0], par[1], par[2], par[3], v);
-        int stroke = 0, passive = 0;
-        stroke |= (v[0] < 160.0) | (v[0] > 320.0);
-        stroke |= (v[1] < 160.0) | (v[1] > 320.0);
-        stroke |= (v[2] < 160.0) | (v[2] > 320.0);
-        stroke |= (v[3] < 160.0) | (v[3] > 320.0);
-        stroke |= (v[4] < 160.0) | (v[4] > 320.0);
-        stroke |= (v[5] < 160.0) | (v[5] > 320.0);
-        passive |= (v[6] < 0.0) | (v[6] > 0.34906585039886595);
-        passive |= (v[7] < 0.0) | (v[7] > 0.34906585039886595);
-        passive |= (v[8] < 0.0) | (v[8] > 0.34906585039886595);
-        passive |= (v[9] < 0.0) | (v[9] > 0.34906585039886595);
-        passive |= (v[10] < 0.0) | (v[10] > 0.34906585039886595);
-        passive |= (v[11] < 0.0) | (v[11] > 0.34906585039886595);
-        passive |= (v[12] < 0.0) | (v[12] > 0.34906585039886595);
-        passive |= (v[13] < 0.0) | (v[13] > 0.34906585039886595);
-        passive |= (v[14] < 0.0) | (v[14] > 0.34906585039886595);
-        passive |= (v[15] < 0.0) | (v[15] > 0.34906585039886595);
-        passive |= (v[16] < 0.0) | (v[16] > 0.34906585039886595);
-        passive |= (v[17] < 0.0) | (v[17] > 0.34906585039886595);
-        int ok = bf_all_finite(q, 6);
-        if (stroke || passive)
-            bf_fill_nan(q, 6);
-        if (ok && passive && status == BF_OK)
-            status = BF_PASSIVE_JOINT_LIMIT;
-        if (ok && stroke && status != BF_INVALID_INPUT
-            && (status == BF_OK || status == BF_PASSIVE_JOINT_LIMIT))
-            status = BF_STROKE_LIMIT;
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step4_q3(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], R[0][i], R[1][i], R[2][i], R[3][i], par[0], par[1], par[2], par[3], c);
+        R[4][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 4) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    if (jac) {
-        double v[48];
-        _jac(p[0], p[1], p[2], p[3], p[4], p[5], q[0], q[1], q[2], q[3], q[4], q[5], par[0], par[1], par[2], par[3], v);
-        int singular = bf_pivots_singular(v, 6) || status == BF_ON_BOUNDARY;
-        for (int k = 0; k < 36; k++)
-            jac[k] = singular ? NAN : v[12 + k];
-        if ((status == BF_OK || status == BF_ON_BOUNDARY) && singular)
-            status = BF_INPUT_SINGULAR;
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step5_q6(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], R[0][i], R[1][i], R[2][i], R[3][i], R[4][i], par[0], par[1], par[2], par[3], c);
+        R[5][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 5) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    *status_out = (signed char)status;
+    for (int i = 0; i < m; i++) {
+        int failed = FL[i];
+        Q[1][i] = failed ? NAN : R[0][i];
+        Q[4][i] = failed ? NAN : R[1][i];
+        Q[0][i] = failed ? NAN : R[2][i];
+        Q[3][i] = failed ? NAN : R[3][i];
+        Q[2][i] = failed ? NAN : R[4][i];
+        Q[5][i] = failed ? NAN : R[5][i];
+        ST[i] = BF_SET(ST[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i]) & BF_FIN(P[3][i]) & BF_FIN(P[4][i]) & BF_FIN(P[5][i])), BF_INVALID_INPUT);
+    }
+    if (limits) {
+        for (int i = 0; i < m; i++) {
+            double v[18];
+            _limit_values(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], par[3], v);
+            int stroke = 0, passive = 0, status = ST[i];
+            stroke |= (v[0] < 160.0) | (v[0] > 320.0);
+            stroke |= (v[1] < 160.0) | (v[1] > 320.0);
+            stroke |= (v[2] < 160.0) | (v[2] > 320.0);
+            stroke |= (v[3] < 160.0) | (v[3] > 320.0);
+            stroke |= (v[4] < 160.0) | (v[4] > 320.0);
+            stroke |= (v[5] < 160.0) | (v[5] > 320.0);
+            passive |= (v[6] < 0.0) | (v[6] > 0.34906585039886595);
+            passive |= (v[7] < 0.0) | (v[7] > 0.34906585039886595);
+            passive |= (v[8] < 0.0) | (v[8] > 0.34906585039886595);
+            passive |= (v[9] < 0.0) | (v[9] > 0.34906585039886595);
+            passive |= (v[10] < 0.0) | (v[10] > 0.34906585039886595);
+            passive |= (v[11] < 0.0) | (v[11] > 0.34906585039886595);
+            passive |= (v[12] < 0.0) | (v[12] > 0.34906585039886595);
+            passive |= (v[13] < 0.0) | (v[13] > 0.34906585039886595);
+            passive |= (v[14] < 0.0) | (v[14] > 0.34906585039886595);
+            passive |= (v[15] < 0.0) | (v[15] > 0.34906585039886595);
+            passive |= (v[16] < 0.0) | (v[16] > 0.34906585039886595);
+            passive |= (v[17] < 0.0) | (v[17] > 0.34906585039886595);
+            int ok = BF_FIN(Q[0][i]) & BF_FIN(Q[1][i]) & BF_FIN(Q[2][i]) & BF_FIN(Q[3][i]) & BF_FIN(Q[4][i]) & BF_FIN(Q[5][i]);
+            int violated = stroke | passive;
+            Q[0][i] = violated ? NAN : Q[0][i];
+            Q[1][i] = violated ? NAN : Q[1][i];
+            Q[2][i] = violated ? NAN : Q[2][i];
+            Q[3][i] = violated ? NAN : Q[3][i];
+            Q[4][i] = violated ? NAN : Q[4][i];
+            Q[5][i] = violated ? NAN : Q[5][i];
+            status = BF_SET(status, ok & passive & (status == BF_OK), BF_PASSIVE_JOINT_LIMIT);
+            status = BF_SET(status, ok & stroke & ((status == BF_OK) | (status == BF_PASSIVE_JOINT_LIMIT)), BF_STROKE_LIMIT);
+            ST[i] = status;
+        }
+    }
+    if (jac_out) {
+        double J[36][BF_BLOCK];
+        for (int i = 0; i < m; i++) {
+            double v[48];
+            _jac(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], par[3], v);
+            int status = ST[i];
+            int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[6]) | !(fabs(v[1]) > BF_DET_RTOL * v[7]) | !(fabs(v[2]) > BF_DET_RTOL * v[8]) | !(fabs(v[3]) > BF_DET_RTOL * v[9]) | !(fabs(v[4]) > BF_DET_RTOL * v[10]) | !(fabs(v[5]) > BF_DET_RTOL * v[11])) | (status == BF_ON_BOUNDARY);
+            J[0][i] = singular ? NAN : v[12];
+            J[1][i] = singular ? NAN : v[13];
+            J[2][i] = singular ? NAN : v[14];
+            J[3][i] = singular ? NAN : v[15];
+            J[4][i] = singular ? NAN : v[16];
+            J[5][i] = singular ? NAN : v[17];
+            J[6][i] = singular ? NAN : v[18];
+            J[7][i] = singular ? NAN : v[19];
+            J[8][i] = singular ? NAN : v[20];
+            J[9][i] = singular ? NAN : v[21];
+            J[10][i] = singular ? NAN : v[22];
+            J[11][i] = singular ? NAN : v[23];
+            J[12][i] = singular ? NAN : v[24];
+            J[13][i] = singular ? NAN : v[25];
+            J[14][i] = singular ? NAN : v[26];
+            J[15][i] = singular ? NAN : v[27];
+            J[16][i] = singular ? NAN : v[28];
+            J[17][i] = singular ? NAN : v[29];
+            J[18][i] = singular ? NAN : v[30];
+            J[19][i] = singular ? NAN : v[31];
+            J[20][i] = singular ? NAN : v[32];
+            J[21][i] = singular ? NAN : v[33];
+            J[22][i] = singular ? NAN : v[34];
+            J[23][i] = singular ? NAN : v[35];
+            J[24][i] = singular ? NAN : v[36];
+            J[25][i] = singular ? NAN : v[37];
+            J[26][i] = singular ? NAN : v[38];
+            J[27][i] = singular ? NAN : v[39];
+            J[28][i] = singular ? NAN : v[40];
+            J[29][i] = singular ? NAN : v[41];
+            J[30][i] = singular ? NAN : v[42];
+            J[31][i] = singular ? NAN : v[43];
+            J[32][i] = singular ? NAN : v[44];
+            J[33][i] = singular ? NAN : v[45];
+            J[34][i] = singular ? NAN : v[46];
+            J[35][i] = singular ? NAN : v[47];
+            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
+        }
+        for (int i = 0; i < m; i++)
+            for (int k = 0; k < 36; k++)
+                jac_out[i * 36 + k] = J[k][i];
+    }
+    for (int i = 0; i < m; i++) {
+        q_out[i * 6 + 0] = Q[0][i];
+        q_out[i * 6 + 1] = Q[1][i];
+        q_out[i * 6 + 2] = Q[2][i];
+        q_out[i * 6 + 3] = Q[3][i];
+        q_out[i * 6 + 4] = Q[4][i];
+        q_out[i * 6 + 5] = Q[5][i];
+        status_out[i] = (signed char)ST[i];
+    }
 }
 
 /* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x
  * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */
-void bonered_solve(long n, const double *pose, const double *par, int mode, int limits,
-                   double *q, signed char *status, double *jac)
+void bonered_solve(long n, const double *pose, const double *par_in, int mode,
+                   int limits, double *q, signed char *status, double *jac)
 {
-    for (long i = 0; i < n; i++)
-        solve_one(pose + i * 6, par, mode, limits, q + i * 6, status + i,
-                  jac ? jac + i * 36 : 0);
+    double par[4];
+    for (int k = 0; k < 4; k++)
+        par[k] = par_in[k];
+    for (long lo = 0; lo < n; lo += BF_BLOCK) {
+        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
+        solve_block(m, pose + lo * 6, par, mode, limits, q + lo * 6,
+                    status + lo, jac ? jac + lo * 36 : 0);
+    }
 }

@@ -3,15 +3,15 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ada20df2c7b6b4204f44b765f2e5d0a7fde4fa7d4e11f997915f62d1f131e4b0
+ * Derivation hash: 9ada473894ce2a53d7d304b07b354b52336c03f1ee9e97d561076617197f0884
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "ada20df2c7b6b4204f44b765f2e5d0a7fde4fa7d4e11f997915f62d1f131e4b0";
+const char bonered_derivation_hash[] = "9ada473894ce2a53d7d304b07b354b52336c03f1ee9e97d561076617197f0884";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
-static inline void _study(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+BF_INLINE void _study(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     out[0] = tan((0.5)*v_theta1);
     out[1] = tan((0.5)*v_theta2);
@@ -20,7 +20,7 @@ static inline void _study(double v_theta1, double v_theta2, double v_d, double v
 }
 
 /* Coefficients (A, B, C) of the generator solved for a1 (from shaft/1). */
-static inline void _step0_a1(double v_w1, double v_w2, double v_d1, double v_d2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+BF_INLINE void _step0_a1(double v_w1, double v_w2, double v_d1, double v_d2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     out[0] = 0.0;
     out[1] = -1.0;
@@ -28,7 +28,7 @@ static inline void _step0_a1(double v_w1, double v_w2, double v_d1, double v_d2,
 }
 
 /* Coefficients (A, B, C) of the generator solved for a2 (from shaft/2). */
-static inline void _step1_a2(double v_w1, double v_w2, double v_d1, double v_d2, double v_a1, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+BF_INLINE void _step1_a2(double v_w1, double v_w2, double v_d1, double v_d2, double v_a1, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     const double v__c0 = v_w2*((v_w1*v_w1) + 1.0);
     out[0] = v__c0;
@@ -37,7 +37,7 @@ static inline void _step1_a2(double v_w1, double v_w2, double v_d1, double v_d2,
 }
 
 /* Coefficients (A, B, C) of the generator solved for b1 (from shaft/1). */
-static inline void _step2_b1(double v_w1, double v_w2, double v_d1, double v_d2, double v_a1, double v_a2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+BF_INLINE void _step2_b1(double v_w1, double v_w2, double v_d1, double v_d2, double v_a1, double v_a2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     const double v__c0 = 2.0*v_lab1*v_loa1;
     const double v__c1 = 4.0*v_d1*v_lab1*v_w2;
@@ -54,7 +54,7 @@ static inline void _step2_b1(double v_w1, double v_w2, double v_d1, double v_d2,
 }
 
 /* Coefficients (A, B, C) of the generator solved for b2 (from shaft/2). */
-static inline void _step3_b2(double v_w1, double v_w2, double v_d1, double v_d2, double v_a1, double v_a2, double v_b1, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+BF_INLINE void _step3_b2(double v_w1, double v_w2, double v_d1, double v_d2, double v_a1, double v_a2, double v_b1, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     const double v__c0 = 2.0*v_lab2*v_loa2;
     const double v__c1 = (v_w1*v_w1);
@@ -83,7 +83,7 @@ static inline void _step3_b2(double v_w1, double v_w2, double v_d1, double v_d2,
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
-static inline void _jac(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_a1, double v_a2, double v_b1, double v_b2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+BF_INLINE void _jac(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_a1, double v_a2, double v_b1, double v_b2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     const double v__c0 = tan((0.5)*v_theta2);
     const double v__c1 = (v__c0*v__c0);
@@ -228,76 +228,142 @@ static inline void _jac(double v_theta1, double v_theta2, double v_d, double v_g
 }
 
 /* Quantities bounded by LIMITS (joint strokes, passive angles). */
-static inline void _limit_values(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_a1, double v_a2, double v_b1, double v_b2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+BF_INLINE void _limit_values(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_a1, double v_a2, double v_b1, double v_b2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     out[0] = v_d;
     out[1] = v_d - v_gamma*v_p;
 }
 
-static void solve_one(const double *restrict p, const double *restrict par, int mode,
-                      int limits, double *restrict q, signed char *restrict status_out,
-                      double *restrict jac)
+static void solve_block(int m, const double *restrict pose, const double *restrict par,
+                        int mode, int limits, double *restrict q_out,
+                        signed char *restrict status_out, double *restrict jac_out)
 {
-    double s[4], c[3], r[4];
-    _study(p[0], p[1], p[2], p[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], s);
-    int status = bf_all_finite(s, 4) ? BF_OK : BF_INVALID_INPUT;
-    int failed = 0;
+    double P[4][BF_BLOCK], S[4][BF_BLOCK], R[4][BF_BLOCK], Q[4][BF_BLOCK];
+    int ST[BF_BLOCK], FL[BF_BLOCK];
     (void)mode;
-    if (failed) { r[0] = NAN; } else {
-        _step0_a1(s[0], s[1], s[2], s[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-        r[0] = bf_linear(c[1], c[2], &status, &failed);
+    for (int i = 0; i < m; i++) {
+        P[0][i] = pose[i * 4 + 0];
+        P[1][i] = pose[i * 4 + 1];
+        P[2][i] = pose[i * 4 + 2];
+        P[3][i] = pose[i * 4 + 3];
     }
-    if (failed) { r[1] = NAN; } else {
-        _step1_a2(s[0], s[1], s[2], s[3], r[0], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-        r[1] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double s[4];
+        _study(P[0][i], P[1][i], P[2][i], P[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], s);
+        S[0][i] = s[0];
+        S[1][i] = s[1];
+        S[2][i] = s[2];
+        S[3][i] = s[3];
+        ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3])));
+        FL[i] = 0;
     }
-    if (failed) { r[2] = NAN; } else {
-        _step2_b1(s[0], s[1], s[2], s[3], r[0], r[1], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-        r[2] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step0_a1(S[0][i], S[1][i], S[2][i], S[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        R[0][i] = bf_linear(c[1], c[2], &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    if (failed) { r[3] = NAN; } else {
-        _step3_b2(s[0], s[1], s[2], s[3], r[0], r[1], r[2], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-        r[3] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step1_a2(S[0][i], S[1][i], S[2][i], S[3][i], R[0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        R[1][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 0) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    q[0] = failed ? NAN : r[0];
-    q[1] = failed ? NAN : r[1];
-    q[2] = failed ? NAN : r[2];
-    q[3] = failed ? NAN : r[3];
-    if (!bf_all_finite(p, 4))
-        status = BF_INVALID_INPUT;
-    if (limits && bf_all_finite(q, 4)) {
-        double v[2];
-        _limit_values(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
-        int stroke = 0, passive = 0;
-        passive |= (v[0] < 0.0) | (v[0] > 303.4);
-        passive |= (v[1] < 0.0) | (v[1] > 323.0);
-        int ok = bf_all_finite(q, 4);
-        if (stroke || passive)
-            bf_fill_nan(q, 4);
-        if (ok && passive && status == BF_OK)
-            status = BF_PASSIVE_JOINT_LIMIT;
-        if (ok && stroke && status != BF_INVALID_INPUT
-            && (status == BF_OK || status == BF_PASSIVE_JOINT_LIMIT))
-            status = BF_STROKE_LIMIT;
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step2_b1(S[0][i], S[1][i], S[2][i], S[3][i], R[0][i], R[1][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        R[2][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 1) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    if (jac) {
-        double v[24];
-        _jac(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
-        int singular = bf_pivots_singular(v, 4) || status == BF_ON_BOUNDARY;
-        for (int k = 0; k < 16; k++)
-            jac[k] = singular ? NAN : v[8 + k];
-        if ((status == BF_OK || status == BF_ON_BOUNDARY) && singular)
-            status = BF_INPUT_SINGULAR;
+    for (int i = 0; i < m; i++) {
+        double c[3];
+        int status = ST[i], failed = FL[i];
+        _step3_b2(S[0][i], S[1][i], S[2][i], S[3][i], R[0][i], R[1][i], R[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+        R[3][i] = bf_quadratic(c[0], c[1], c[2], (mode >> 2) & 1, &status, &failed);
+        ST[i] = status;
+        FL[i] = failed;
     }
-    *status_out = (signed char)status;
+    for (int i = 0; i < m; i++) {
+        int failed = FL[i];
+        Q[0][i] = failed ? NAN : R[0][i];
+        Q[1][i] = failed ? NAN : R[1][i];
+        Q[2][i] = failed ? NAN : R[2][i];
+        Q[3][i] = failed ? NAN : R[3][i];
+        ST[i] = BF_SET(ST[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i]) & BF_FIN(P[3][i])), BF_INVALID_INPUT);
+    }
+    if (limits) {
+        for (int i = 0; i < m; i++) {
+            double v[2];
+            _limit_values(P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
+            int stroke = 0, passive = 0, status = ST[i];
+            passive |= (v[0] < 0.0) | (v[0] > 303.4);
+            passive |= (v[1] < 0.0) | (v[1] > 323.0);
+            int ok = BF_FIN(Q[0][i]) & BF_FIN(Q[1][i]) & BF_FIN(Q[2][i]) & BF_FIN(Q[3][i]);
+            int violated = stroke | passive;
+            Q[0][i] = violated ? NAN : Q[0][i];
+            Q[1][i] = violated ? NAN : Q[1][i];
+            Q[2][i] = violated ? NAN : Q[2][i];
+            Q[3][i] = violated ? NAN : Q[3][i];
+            status = BF_SET(status, ok & passive & (status == BF_OK), BF_PASSIVE_JOINT_LIMIT);
+            status = BF_SET(status, ok & stroke & ((status == BF_OK) | (status == BF_PASSIVE_JOINT_LIMIT)), BF_STROKE_LIMIT);
+            ST[i] = status;
+        }
+    }
+    if (jac_out) {
+        double J[16][BF_BLOCK];
+        for (int i = 0; i < m; i++) {
+            double v[24];
+            _jac(P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
+            int status = ST[i];
+            int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[4]) | !(fabs(v[1]) > BF_DET_RTOL * v[5]) | !(fabs(v[2]) > BF_DET_RTOL * v[6]) | !(fabs(v[3]) > BF_DET_RTOL * v[7])) | (status == BF_ON_BOUNDARY);
+            J[0][i] = singular ? NAN : v[8];
+            J[1][i] = singular ? NAN : v[9];
+            J[2][i] = singular ? NAN : v[10];
+            J[3][i] = singular ? NAN : v[11];
+            J[4][i] = singular ? NAN : v[12];
+            J[5][i] = singular ? NAN : v[13];
+            J[6][i] = singular ? NAN : v[14];
+            J[7][i] = singular ? NAN : v[15];
+            J[8][i] = singular ? NAN : v[16];
+            J[9][i] = singular ? NAN : v[17];
+            J[10][i] = singular ? NAN : v[18];
+            J[11][i] = singular ? NAN : v[19];
+            J[12][i] = singular ? NAN : v[20];
+            J[13][i] = singular ? NAN : v[21];
+            J[14][i] = singular ? NAN : v[22];
+            J[15][i] = singular ? NAN : v[23];
+            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
+        }
+        for (int i = 0; i < m; i++)
+            for (int k = 0; k < 16; k++)
+                jac_out[i * 16 + k] = J[k][i];
+    }
+    for (int i = 0; i < m; i++) {
+        q_out[i * 4 + 0] = Q[0][i];
+        q_out[i * 4 + 1] = Q[1][i];
+        q_out[i * 4 + 2] = Q[2][i];
+        q_out[i * 4 + 3] = Q[3][i];
+        status_out[i] = (signed char)ST[i];
+    }
 }
 
 /* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x
  * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */
-void bonered_solve(long n, const double *pose, const double *par, int mode, int limits,
-                   double *q, signed char *status, double *jac)
+void bonered_solve(long n, const double *pose, const double *par_in, int mode,
+                   int limits, double *q, signed char *status, double *jac)
 {
-    for (long i = 0; i < n; i++)
-        solve_one(pose + i * 4, par, mode, limits, q + i * 4, status + i,
-                  jac ? jac + i * 16 : 0);
+    double par[11];
+    for (int k = 0; k < 11; k++)
+        par[k] = par_in[k];
+    for (long lo = 0; lo < n; lo += BF_BLOCK) {
+        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
+        solve_block(m, pose + lo * 4, par, mode, limits, q + lo * 4,
+                    status + lo, jac ? jac + lo * 16 : 0);
+    }
 }

@@ -3,6 +3,7 @@ import sys
 from pathlib import Path
 from types import SimpleNamespace
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -45,6 +46,33 @@ def symbolic_of(name: str):
             d = stage(d, algebra)
         _SYMBOLIC[name] = stages.specify(d)
     return _SYMBOLIC[name]
+
+
+def in_joint_quantities(module, q, J=None):
+    """Joints (..., n) and dq/dX (..., n, m) in the joints' own quantities: a joint given as
+    ``u = tan(theta/2)`` (its JOINT_UNITS say ``tan(``) as its angle ``theta = 2 atan(u)``,
+    its Jacobian row as ``dtheta/dX = 2 / (1 + u^2) du/dX``; other joints unchanged.
+
+    Comparing two correct evaluations needs this near a half-turn: there ``u`` amplifies a
+    change of theta by ``(1 + u^2) / 2`` (the chart's conditioning, not the solver's), so
+    elementary functions a few ulp apart give u's 1e-12 apart relative for angles one ulp
+    apart."""
+    half = np.array(["tan(" in unit for unit in module.JOINT_UNITS])
+    q = np.asarray(q, dtype=float)
+    theta = np.where(half, 2.0 * np.arctan(q), q)
+    if J is None:
+        return theta, None
+    scale = np.where(half, 2.0 / (1.0 + q * q), 1.0)
+    return theta, np.asarray(J) * scale[..., :, None]
+
+
+def assert_close(a, b, tol=1e-12):
+    """Equal NaN patterns and ``|a - b| <= tol (1 + |a|)`` elementwise."""
+    a, b = np.asarray(a), np.asarray(b)
+    assert (np.isnan(a) == np.isnan(b)).all(), "NaN patterns differ"
+    ok = ~np.isnan(a)
+    err = np.abs(a[ok] - b[ok]) / (1 + np.abs(a[ok]))
+    assert err.size == 0 or err.max() <= tol, err.max()
 
 
 def verification_of(name: str) -> list[SimpleNamespace]:

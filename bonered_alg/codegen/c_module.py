@@ -1,10 +1,13 @@
 """The compiled fast path of a generated module: ``generated/<name>.c``.
 
 The C kernels are printed from the same common-subexpression programs as the numpy kernels
-(:func:`.kernels.kernel` with ``c=True``); the driver below unrolls the module's step table
-(IK steps in solve order, the pivot check of the linear steps, the limits, the Jacobian)
-around the per-pose algorithms of ``bonered_alg/runtime/c/bonered_fast.h``.  The runtime
-(:mod:`bonered_alg.runtime.compiled`) compiles it with the system C compiler on first use.
+(:func:`.kernels.kernel` with ``c=True``).  The driver below takes the poses in blocks of
+``BF_BLOCK`` in structure-of-arrays form and runs one loop per stage of the module's step
+table (the Study map, the IK steps in solve order, the pivot check of the linear steps, the
+limits, the Jacobian), each loop straight-line code around the branch-free per-pose rules of
+``bonered_alg/runtime/c/bonered_fast.h``, so that the C compiler vectorizes it across poses.
+The runtime (:mod:`bonered_alg.runtime.compiled`) compiles it with the system C compiler on
+first use.
 """
 
 from __future__ import annotations
@@ -38,9 +41,6 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
              limits_kernel: Kernel | None, limits: Sequence[tuple[float, float, str]]) -> str:
     """Source of ``generated/<name>.c`` (deterministic for equal inputs)."""
     npose, nstudy, nj, npar = len(pose), len(study_pose), len(joints), len(parameters)
-    p = [f"p[{i}]" for i in range(npose)]
-    s = [f"s[{i}]" for i in range(nstudy)]
-    q = [f"q[{i}]" for i in range(nj)]
     par = [f"par[{i}]" for i in range(npar)]
     kernels = [study, *[k for _, k, _ in steps], *([pivots] if pivots else []), jac,
                *([limits_kernel] if limits_kernel else [])]
@@ -61,95 +61,145 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
     for k in kernels:
         lines.append(k.c_source)
     nsteps = len(steps)
+    nj_entries = nj * npose
+    P = [f"P[{i}][i]" for i in range(npose)]
+    S = [f"S[{i}][i]" for i in range(nstudy)]
+    R = [f"R[{k}][i]" for k in range(nsteps)]
+    Q = [f"Q[{j}][i]" for j in range(nj)]
+
+    def finite(values: Sequence[str]) -> str:
+        return " & ".join(f"BF_FIN({v})" for v in values) or "1"
+
+    def nan_if(cond: str, values: Sequence[str]) -> list[str]:
+        return [f"            {v} = {cond} ? NAN : {v};" for v in values]
+
+    # Block driver: BF_BLOCK poses at a time, in structure-of-arrays form, one loop per
+    # stage (the Study map, each IK step, the pivots, the limits, the Jacobian).  Each
+    # loop body is straight-line code with selects for the per-pose rules, so the C
+    # compiler vectorizes it across poses (the elementary functions through the vector
+    # math library where bonered_fast.h declares it).  Every step is evaluated for every
+    # pose: after a failure the status is a failure code no later step changes
+    # (backsubstitute: the first failure wins) and every joint is NaN, so this changes no
+    # result.
     body = [
-        "static void solve_one(const double *restrict p, const double *restrict par, int mode,",
-        "                      int limits, double *restrict q, signed char *restrict status_out,",
-        "                      double *restrict jac)",
+        "static void solve_block(int m, const double *restrict pose, const double *restrict par,",
+        "                        int mode, int limits, double *restrict q_out,",
+        "                        signed char *restrict status_out, double *restrict jac_out)",
         "{",
-        f"    double s[{nstudy}], c[3], r[{max(nsteps, 1)}];",
-        f"    {_call(study, p + par, 's')}",
-        f"    int status = bf_all_finite(s, {nstudy}) ? BF_OK : BF_INVALID_INPUT;",
-        "    int failed = 0;",
+        f"    double P[{npose}][BF_BLOCK], S[{nstudy}][BF_BLOCK], "
+        f"R[{max(nsteps, 1)}][BF_BLOCK], Q[{nj}][BF_BLOCK];",
+        "    int ST[BF_BLOCK], FL[BF_BLOCK];",
         "    (void)mode;",
+        "    for (int i = 0; i < m; i++) {",
+        *[f"        {P[k]} = pose[i * {npose} + {k}];" for k in range(npose)],
+        "    }",
+        "    for (int i = 0; i < m; i++) {",
+        f"        double s[{nstudy}];",
+        f"        {_call(study, P + par, 's')}",
+        *[f"        {S[k]} = s[{k}];" for k in range(nstudy)],
+        f"        ST[i] = BF_INVALID_INPUT * (1 - ({finite([f's[{k}]' for k in range(nstudy)])}));",
+        "        FL[i] = 0;",
+        "    }",
     ]
-    # once a step has failed the status is a failure code that no later step can change
-    # (backsubstitute: the first failure wins), and every joint is NaN: the later steps are
-    # skipped, which changes no result
     for k, (degree, kern, bit) in enumerate(steps):
-        body.append(f"    if (failed) {{ r[{k}] = NAN; }} else {{")
-        body.append(f"        {_call(kern, s + [f'r[{j}]' for j in range(k)] + par, 'c')}")
+        body += [
+            "    for (int i = 0; i < m; i++) {",
+            "        double c[3];",
+            "        int status = ST[i], failed = FL[i];",
+            f"        {_call(kern, S + R[:k] + par, 'c')}",
+        ]
         if degree == 1:
-            body.append(f"        r[{k}] = bf_linear(c[1], c[2], &status, &failed);")
+            body.append(f"        {R[k]} = bf_linear(c[1], c[2], &status, &failed);")
         else:
-            body.append(f"        r[{k}] = bf_quadratic(c[0], c[1], c[2], (mode >> {bit}) & 1,"
+            body.append(f"        {R[k]} = bf_quadratic(c[0], c[1], c[2], (mode >> {bit}) & 1,"
                         " &status, &failed);")
-        body.append("    }")
-    for k, j in enumerate(solve_index):
-        body.append(f"    q[{j}] = failed ? NAN : r[{k}];")
-    body.append(f"    if (!bf_all_finite(p, {npose}))")
-    body.append("        status = BF_INVALID_INPUT;")
+        body += ["        ST[i] = status;", "        FL[i] = failed;", "    }"]
+    body += [
+        "    for (int i = 0; i < m; i++) {",
+        "        int failed = FL[i];",
+        *[f"        {Q[j]} = failed ? NAN : {R[k]};" for k, j in enumerate(solve_index)],
+        f"        ST[i] = BF_SET(ST[i], 1 - ({finite(P)}), BF_INVALID_INPUT);",
+        "    }",
+    ]
     if pivots is not None:
         npiv = pivots.outputs // 2
+        vanish = " | ".join(f"(fabs(v[{k}]) <= BF_DET_RTOL * fabs(v[{npiv + k}]))"
+                            for k in range(npiv))
         body += [
-            "    {",
+            "    for (int i = 0; i < m; i++) {",
             f"        double v[{pivots.outputs}];",
-            f"        {_call(pivots, s + q + par, 'v')}",
-            f"        if (bf_pivots_vanish(v, {npiv}) && bf_all_finite(q, {nj})) {{",
-            f"            bf_fill_nan(q, {nj});",
-            "            if (status == BF_OK)",
-            "                status = BF_INPUT_SINGULAR;",
-            "        }",
+            f"        {_call(pivots, S + Q + par, 'v')}",
+            f"        int singular = ({vanish}) & ({finite(Q)});",
+            *[line[4:] for line in nan_if("singular", Q)],
+            "        ST[i] = BF_SET(ST[i], singular & (ST[i] == BF_OK), BF_INPUT_SINGULAR);",
             "    }",
         ]
-    # with the joints NaN (all of them: the IK gives a configuration as a whole or not at
-    # all) no limit can change the result: a violation changes the status only with finite
-    # joints (model._limit_check), so the limit kernel is skipped
+    # with NaN joints (all of them: the IK gives a configuration as a whole or not at all)
+    # no limit changes the result (model._limit_check)
     if limits_kernel is not None:
-        body += [
-            f"    if (limits && bf_all_finite(q, {nj})) {{",
-            f"        double v[{limits_kernel.outputs}];",
-            f"        {_call(limits_kernel, p + q + par, 'v')}",
-            "        int stroke = 0, passive = 0;",
-        ]
+        checks = []
         for i, (lower, upper, kind) in enumerate(limits):
             var = "stroke" if kind == "stroke" else "passive"
-            body.append(f"        {var} |= (v[{i}] < {_c_float(lower)}) | (v[{i}] > "
-                        f"{_c_float(upper)});")
+            checks.append(f"            {var} |= (v[{i}] < {_c_float(lower)}) | (v[{i}] > "
+                          f"{_c_float(upper)});")
         body += [
-            f"        int ok = bf_all_finite(q, {nj});",
-            "        if (stroke || passive)",
-            f"            bf_fill_nan(q, {nj});",
-            "        if (ok && passive && status == BF_OK)",
-            "            status = BF_PASSIVE_JOINT_LIMIT;",
-            "        if (ok && stroke && status != BF_INVALID_INPUT",
-            "            && (status == BF_OK || status == BF_PASSIVE_JOINT_LIMIT))",
-            "            status = BF_STROKE_LIMIT;",
+            "    if (limits) {",
+            "        for (int i = 0; i < m; i++) {",
+            f"            double v[{limits_kernel.outputs}];",
+            f"            {_call(limits_kernel, P + Q + par, 'v')}",
+            "            int stroke = 0, passive = 0, status = ST[i];",
+            *checks,
+            f"            int ok = {finite(Q)};",
+            "            int violated = stroke | passive;",
+            *nan_if("violated", Q),
+            "            status = BF_SET(status, ok & passive & (status == BF_OK),"
+            " BF_PASSIVE_JOINT_LIMIT);",
+            "            status = BF_SET(status, ok & stroke & ((status == BF_OK)"
+            " | (status == BF_PASSIVE_JOINT_LIMIT)), BF_STROKE_LIMIT);",
+            "            ST[i] = status;",
+            "        }",
             "    }",
         ]
     else:
         body.append("    (void)limits;")
-    nj_entries = nj * npose
     body += [
-        "    if (jac) {",
-        f"        double v[{jac.outputs}];",
-        f"        {_call(jac, p + q + par, 'v')}",
-        f"        int singular = bf_pivots_singular(v, {nj}) || status == BF_ON_BOUNDARY;",
-        f"        for (int k = 0; k < {nj_entries}; k++)",
-        f"            jac[k] = singular ? NAN : v[{2 * nj} + k];",
-        "        if ((status == BF_OK || status == BF_ON_BOUNDARY) && singular)",
-        "            status = BF_INPUT_SINGULAR;",
+        "    if (jac_out) {",
+        f"        double J[{nj_entries}][BF_BLOCK];",
+        "        for (int i = 0; i < m; i++) {",
+        f"            double v[{jac.outputs}];",
+        f"            {_call(jac, P + Q + par, 'v')}",
+        "            int status = ST[i];",
+        "            int singular = (" + " | ".join(
+            f"!(fabs(v[{k}]) > BF_DET_RTOL * v[{nj + k}])" for k in range(nj))
+        + ") | (status == BF_ON_BOUNDARY);",
+        *[f"            J[{k}][i] = singular ? NAN : v[{2 * nj + k}];"
+          for k in range(nj_entries)],
+        "            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY))"
+        " & singular, BF_INPUT_SINGULAR);",
+        "        }",
+        "        for (int i = 0; i < m; i++)",
+        f"            for (int k = 0; k < {nj_entries}; k++)",
+        f"                jac_out[i * {nj_entries} + k] = J[k][i];",
         "    }",
-        "    *status_out = (signed char)status;",
+        "    for (int i = 0; i < m; i++) {",
+        *[f"        q_out[i * {nj} + {j}] = {Q[j]};" for j in range(nj)],
+        "        status_out[i] = (signed char)ST[i];",
+        "    }",
         "}",
         "",
         "/* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x",
         " * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */",
-        "void bonered_solve(long n, const double *pose, const double *par, int mode, int limits,",
-        "                   double *q, signed char *status, double *jac)",
+        "void bonered_solve(long n, const double *pose, const double *par_in, int mode,",
+        "                   int limits, double *q, signed char *status, double *jac)",
         "{",
-        "    for (long i = 0; i < n; i++)",
-        f"        solve_one(pose + i * {npose}, par, mode, limits, q + i * {nj}, status + i,",
-        f"                  jac ? jac + i * {nj_entries} : 0);",
+        f"    double par[{max(npar, 1)}];",
+        f"    for (int k = 0; k < {npar}; k++)",
+        "        par[k] = par_in[k];",
+        "    for (long lo = 0; lo < n; lo += BF_BLOCK) {",
+        "        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;",
+        f"        solve_block(m, pose + lo * {npose}, par, mode, limits, q + lo * {nj},",
+        f"                    status + lo, jac ? jac + lo * {nj_entries} : 0);",
+        "    }",
         "}",
     ]
     if jac.outputs != 2 * nj + nj_entries:

@@ -121,7 +121,7 @@ class Kernel:
 def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc: str,
            c: bool = False) -> Kernel:
     """Emit ``def name(*args): ... return (out0, out1, ...)`` with CSE; with ``c``, also
-    ``static void name(double v_arg, ..., double *restrict out)`` from the same program."""
+    ``BF_INLINE void name(double v_arg, ..., double *restrict out)`` from the same program."""
     printer = _Printer({"fully_qualified_modules": True, "allow_unknown_functions": False})
     subs, reduced = sp.cse([sp.sympify(o) for o in outputs],
                            symbols=sp.numbered_symbols("_c"), order="canonical")
@@ -143,7 +143,7 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
 def _c_function(name, args, subs, reduced, doc) -> str:
     cp = _CPrinter()
     params = ", ".join([f"double v_{a}" for a in args] + ["double *restrict out"])
-    lines = [f"/* {doc.replace('*/', '* /')} */", f"static inline void {name}({params})", "{"]
+    lines = [f"/* {doc.replace('*/', '* /')} */", f"BF_INLINE void {name}({params})", "{"]
     for sym, expr in subs:
         lines.append(f"    const double v_{sym} = {cp.doprint(expr)};")
     for k, expr in enumerate(reduced):

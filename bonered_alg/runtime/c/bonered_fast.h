@@ -4,11 +4,64 @@
  * tests/test_fast_path.py holds it against the numpy runtime, status codes included.
  *
  * Compiled without -ffast-math and with -ffp-contract=off: IEEE arithmetic in the order
- * the generated kernels write it, NaN and infinity as numpy has them. */
+ * the generated kernels write it, NaN and infinity as numpy has them.  The per-pose rules
+ * are written without branches (selects), so that the block loops of generated/<name>.c
+ * vectorize across poses; the elementary functions then come from glibc's vector math
+ * library (libmvec, at most 4 ulp from the scalar libm, which numpy's own SIMD functions
+ * are not equal to either), declared below where it has them. */
 #ifndef BONERED_FAST_H
 #define BONERED_FAST_H
 
+#include <float.h>
 #include <math.h>
+
+/* poses per block of the generated drivers: every intermediate array stays in L1/L2 */
+#ifndef BF_BLOCK
+#define BF_BLOCK 64
+#endif
+
+#if defined(__GNUC__)
+#define BF_INLINE static inline __attribute__((always_inline))
+#else
+#define BF_INLINE static inline
+#endif
+
+/* status s replaced by code where cond (0 or 1), without a branch */
+#define BF_SET(s, cond, code) ((s) + (cond) * ((code) - (s)))
+
+/* finite, without a branch: NaN compares false, infinity is above DBL_MAX */
+#define BF_FIN(x) (fabs(x) <= DBL_MAX)
+
+/* glibc >= 2.35 has SIMD variants of these on x86-64 (libmvec; with -fopenmp-simd the
+ * compiler calls them from vectorized loops).  They are declared under other names bound
+ * to the libm symbols: the compiler then does not fuse sin and cos of one argument into
+ * sincos, which it cannot vectorize. */
+#if defined(__x86_64__) && defined(__GLIBC__) && defined(__GLIBC_MINOR__) && \
+    (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 35)) && !defined(BF_NO_VECTOR_MATH)
+#define BF_VECTOR_MATH(name, args) \
+    _Pragma("omp declare simd notinbranch") \
+    extern double bf_##name args __asm__(#name) __attribute__((const, nothrow));
+BF_VECTOR_MATH(sin, (double))
+BF_VECTOR_MATH(cos, (double))
+BF_VECTOR_MATH(tan, (double))
+BF_VECTOR_MATH(asin, (double))
+BF_VECTOR_MATH(acos, (double))
+BF_VECTOR_MATH(atan, (double))
+BF_VECTOR_MATH(exp, (double))
+BF_VECTOR_MATH(log, (double))
+BF_VECTOR_MATH(atan2, (double, double))
+BF_VECTOR_MATH(pow, (double, double))
+#define sin(x) bf_sin(x)
+#define cos(x) bf_cos(x)
+#define tan(x) bf_tan(x)
+#define asin(x) bf_asin(x)
+#define acos(x) bf_acos(x)
+#define atan(x) bf_atan(x)
+#define exp(x) bf_exp(x)
+#define log(x) bf_log(x)
+#define atan2(x, y) bf_atan2(x, y)
+#define pow(x, y) bf_pow(x, y)
+#endif
 
 /* status codes: bonered_alg/runtime/status.py (tests/test_fast_path.py checks they agree) */
 #define BF_OK 0
@@ -22,28 +75,26 @@
 #define BF_DISC_RTOL 1e-10
 #define BF_DET_RTOL 1e-12
 
-static inline int bf_all_finite(const double *v, int n)
-{
-    for (int i = 0; i < n; i++)
-        if (!isfinite(v[i]))
-            return 0;
-    return 1;
-}
+/* The per-pose rules below are arithmetic on 0/1 flags rather than branches or short
+ * circuits, which compilers turn back into branches and then cannot vectorize. */
 
 /* the status update of backsubstitute: the first failure wins, a failure overrides an
  * earlier ON_BOUNDARY */
-static inline void bf_update(int *status, int code, int bad)
+BF_INLINE void bf_update(int *status, int code, int bad)
 {
-    if (*status == BF_OK || (*status == BF_ON_BOUNDARY && bad))
-        *status = code;
+    int s = *status;
+    int take = (s == BF_OK) | ((s == BF_ON_BOUNDARY) & bad);
+    *status = BF_SET(s, take, code);
 }
 
 /* B q + C = 0 */
-static inline double bf_linear(double b, double c, int *status, int *failed)
+BF_INLINE double bf_linear(double b, double c, int *status, int *failed)
 {
     double root = -c / b;
-    int bad = !isfinite(root);
-    int code = bad ? (b == 0.0 ? BF_INPUT_SINGULAR : BF_JOINT_AT_INFINITY) : BF_OK;
+    int bad = !BF_FIN(root);
+    /* bad: INPUT_SINGULAR where b = 0, else JOINT_AT_INFINITY */
+    int code = bad * (BF_JOINT_AT_INFINITY + (b == 0.0) * (BF_INPUT_SINGULAR
+                                                           - BF_JOINT_AT_INFINITY));
     bf_update(status, code, bad);
     *failed |= bad;
     return bad ? NAN : root;
@@ -51,50 +102,28 @@ static inline double bf_linear(double b, double c, int *status, int *failed)
 
 /* A q^2 + B q + C = 0, the root of the mode's sign, in the form that never subtracts nearly
  * equal numbers */
-static inline double bf_quadratic(double a, double b, double c, int minus, int *status,
-                                  int *failed)
+BF_INLINE double bf_quadratic(double a, double b, double c, int minus, int *status,
+                              int *failed)
 {
     double sign = minus ? -1.0 : 1.0;
     double bb = b * b;
     double disc = bb - 4.0 * a * c;
-    /* numpy.maximum(disc, 0.0): NaN stays NaN */
-    double clipped = isnan(disc) ? disc : (disc > 0.0 ? disc : 0.0);
+    /* numpy.maximum(disc, 0.0): NaN stays NaN (and -0.0 for disc <= 0: the same roots) */
+    double clipped = disc * (double)((disc > 0.0) | (disc != disc));
     double ssq = sign * sqrt(clipped);
-    double root = (sign * b <= 0.0) ? (ssq - b) / (2.0 * a) : (2.0 * c) / (-b - ssq);
+    double near = (ssq - b) / (2.0 * a), far = (2.0 * c) / (-b - ssq);
+    double root = (sign * b <= 0.0) ? near : far;
     int no_real = disc < -BF_DISC_RTOL * bb;
-    int bad = no_real || !isfinite(root);
-    int code = bad ? BF_JOINT_AT_INFINITY : BF_OK;
-    if (no_real)
-        code = BF_NO_REAL_SOLUTION;
-    if (!bad && fabs(disc) <= BF_DISC_RTOL * bb)
-        code = BF_ON_BOUNDARY;
+    int bad = no_real | !BF_FIN(root);
+    int boundary = (1 - bad) & (fabs(disc) <= BF_DISC_RTOL * bb);
+    /* NO_REAL_SOLUTION (1) where no real root, else JOINT_AT_INFINITY (2) where bad, else
+     * ON_BOUNDARY (3) where the discriminant vanishes, else OK (0) */
+    int code = bad * (BF_JOINT_AT_INFINITY - no_real * (BF_JOINT_AT_INFINITY
+                                                        - BF_NO_REAL_SOLUTION))
+               + boundary * BF_ON_BOUNDARY;
     bf_update(status, code, bad);
     *failed |= bad;
     return bad ? NAN : root;
-}
-
-/* model._pivot_check: |d| <= DET_RTOL |scale| for any pivot (NaN is not singular here) */
-static inline int bf_pivots_vanish(const double *v, int n)
-{
-    int singular = 0;
-    for (int k = 0; k < n; k++)
-        singular |= fabs(v[k]) <= BF_DET_RTOL * fabs(v[n + k]);
-    return singular;
-}
-
-/* model.pivot_singular: not |d| > DET_RTOL scale (NaN is singular here) */
-static inline int bf_pivots_singular(const double *v, int n)
-{
-    int singular = 0;
-    for (int k = 0; k < n; k++)
-        singular |= !(fabs(v[k]) > BF_DET_RTOL * v[n + k]);
-    return singular;
-}
-
-static inline void bf_fill_nan(double *v, int n)
-{
-    for (int i = 0; i < n; i++)
-        v[i] = NAN;
 }
 
 #endif
