@@ -151,6 +151,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--root", type=Path, default=None,
                    help="project root (default: the project the package was installed from)")
     p.add_argument("--quiet", action="store_true", help="no per-stage progress")
+    p.add_argument("--jobs", type=int, default=None,
+                   help="worker processes, one mechanism each (default: $BONERED_ALG_JOBS, "
+                   "else all cores; 1: in this process)")
     sub.add_parser("list", help="list the mechanisms")
     i = sub.add_parser("info", help="what a generated module offers (pose, joints, modes, "
                        "parameters, functions, status codes)")
@@ -190,6 +193,10 @@ def main(argv: list[str] | None = None) -> int:
             return report(Path(args.root).resolve(), names)
         if args.command == "derive":
             _names(args.names, REGISTRY, "derive")
+            if args.jobs is not None and args.jobs < 1:
+                print(f"bonered-alg derive: error: --jobs must be a positive integer, got "
+                      f"{args.jobs}", file=sys.stderr)
+                return 2
     except BoneredError as exc:
         print(f"bonered-alg: error: {exc}", file=sys.stderr)
         return 2
@@ -216,7 +223,7 @@ def main(argv: list[str] | None = None) -> int:
         engine = get_engine(args.engine)
         print(f"Groebner engine: {engine.name}", flush=True)
         derive_all(args.root.resolve(), args.names or None, args.force, engine,
-                   progress=None if args.quiet else print)
+                   progress=None if args.quiet else print, jobs=args.jobs)
     except (BoneredError, KeyError, NotImplementedError) as exc:
         print(f"bonered-alg: error: {exc}", file=sys.stderr)
         return 2

@@ -31,6 +31,17 @@ def test_unknown_mechanism_is_one_line_and_exit_2(command, capsys, monkeypatch):
     assert all(name in err for name in REGISTRY)
 
 
+def test_derive_jobs_must_be_positive(capsys, monkeypatch):
+    from bonered_alg.pipeline import runner
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started before --jobs was checked")
+
+    monkeypatch.setattr(runner, "derive_all", no_work)
+    assert cli.main(["derive", "--jobs", "0"]) == 2
+    assert "--jobs must be a positive integer, got 0" in capsys.readouterr().err
+
+
 def test_info_describes_the_generated_module(capsys):
     from bonered_alg.generated import planar_tripod as m
 

@@ -3,7 +3,10 @@ whose outputs are out of date, written to disk (:func:`derive_all`)."""
 
 from __future__ import annotations
 
+import multiprocessing
+import os
 import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import replace
 from pathlib import Path
 from types import ModuleType
@@ -67,28 +70,73 @@ def write(record: Record, root: Path) -> list[Path]:
     return outputs.write(outputs.files(record), root)
 
 
+def default_jobs() -> int:
+    """Processes for :func:`derive_all`: ``$BONERED_ALG_JOBS``, else the usable cores."""
+    env = os.environ.get("BONERED_ALG_JOBS")
+    if env:
+        try:
+            jobs = int(env)
+        except ValueError:
+            jobs = 0
+        if jobs < 1:
+            raise ValueError(f"BONERED_ALG_JOBS must be a positive integer, got {env!r}")
+        return jobs
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+               else (os.cpu_count() or 1))
+
+
+def _derive_and_write(name: str, root: Path, engine: Engine | None, progress) -> str:
+    """Derive ``name`` and write its outputs: the log line."""
+    t0 = time.perf_counter()
+    record = derive(name, engine=engine, progress=progress)
+    changed = write(record, root)
+    return (f"{name}: derived in {time.perf_counter() - t0:.1f} s; wrote "
+            + (", ".join(str(p.relative_to(root)) for p in changed) or "nothing new"))
+
+
+def _derive_in_worker(name: str, root: Path, engine: Engine | None, progress: bool) -> str:
+    """:func:`_derive_and_write` in a worker process (the engine pickled: its class and
+    executable)."""
+    return _derive_and_write(name, root, engine, print if progress else None)
+
+
 def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
-               engine: Engine | None = None, log=print, progress=None) -> dict[str, str]:
+               engine: Engine | None = None, log=print, progress=None,
+               jobs: int | None = None) -> dict[str, str]:
     """Derive and write each mechanism whose outputs are missing or out of date, and the
     record of the Study-parameter framework (``papers/study_algebra.py``); where anything
-    was derived, the record of the engine and packages used (:mod:`.toolchain`)."""
+    was derived, the record of the engine and packages used (:mod:`.toolchain`).
+
+    With ``jobs`` > 1 (default :func:`default_jobs`) the mechanisms are derived in that many
+    worker processes, each mechanism in one process from start to finish: every output is
+    the same bytes as a serial run (each depends on its own mechanism only and is written
+    atomically); the log lines come in registry order, the progress lines as they happen."""
     from ..papers import study_algebra
 
     status = {}
     if not names:
         status["study_algebra"] = study_algebra.write_record(root, force, log)
+    todo = []
     for name in names or list(REGISTRY):
         current = current_hash(name)
         if not force and outputs.recorded_hash(root, name) == current:
             log(f"{name}: up to date ({current[:12]})")
             status[name] = "up to date"
-            continue
-        t0 = time.perf_counter()
-        record = derive(name, engine=engine, progress=progress)
-        changed = write(record, root)
-        log(f"{name}: derived in {time.perf_counter() - t0:.1f} s; wrote "
-            + (", ".join(str(p.relative_to(root)) for p in changed) or "nothing new"))
-        status[name] = "derived"
+        else:
+            todo.append(name)
+    jobs = min(len(todo), jobs or default_jobs())
+    if jobs <= 1:
+        for name in todo:
+            log(_derive_and_write(name, root, engine, progress))
+            status[name] = "derived"
+    else:
+        ctx = multiprocessing.get_context("spawn")  # no fork of a process with threads
+        with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
+            futures = {name: pool.submit(_derive_in_worker, name, root, engine,
+                                         progress is not None) for name in todo}
+            for name in todo:
+                log(futures[name].result())
+                status[name] = "derived"
     if "derived" in status.values() or toolchain.recorded(root) is None:
         toolchain.write(root, engine or get_engine())
     return status
