@@ -117,17 +117,20 @@ def lambdify_baseline(derivation):
                      list(gens.jacobian(sp.Matrix(joints))), modules="numpy")
     jo = sp.lambdify([*pose, *joints, *par],
                      list(gens.jacobian(sp.Matrix(pose))), modules="numpy")
+    # the test geometry, the module's defaults for the parameters it does not set (the
+    # tool's c and Dn), in the declaration's order
+    values = [{**gen.PARAMETERS, **GEOMETRY}[str(p)] for p in par]
 
     def ik_fn(poses):
         cols = [poses[:, i] for i in range(4)]
-        return np.stack(np.broadcast_arrays(*ik(*cols, *GEOMETRY.values())), axis=-1)
+        return np.stack(np.broadcast_arrays(*ik(*cols, *values)), axis=-1)
 
     def jac_fn(poses):
         q = ik_fn(poses)
         cols = [poses[:, i] for i in range(4)] + [q[:, i] for i in range(4)]
         n = len(poses)
-        a = np.stack(np.broadcast_arrays(*ji(*cols, *GEOMETRY.values()), np.empty(n)))[:-1]
-        b = np.stack(np.broadcast_arrays(*jo(*cols, *GEOMETRY.values()), np.empty(n)))[:-1]
+        a = np.stack(np.broadcast_arrays(*ji(*cols, *values), np.empty(n)))[:-1]
+        b = np.stack(np.broadcast_arrays(*jo(*cols, *values), np.empty(n)))[:-1]
         return -np.linalg.solve(a.T.reshape(n, 4, 4), b.T.reshape(n, 4, 4))
 
     return ik_fn, jac_fn
