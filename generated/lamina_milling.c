@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f78b5a642de0a8785ec0ac3550f1e79354f96c8ab3af525353c53712ae73ea46
+ * Derivation hash: e1d5eaf3ff7ba9c2fa59b5d74a07546021fdf5a772181ed512e82124d3dcfda4
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "f78b5a642de0a8785ec0ac3550f1e79354f96c8ab3af525353c53712ae73ea46";
+const char bonered_derivation_hash[] = "e1d5eaf3ff7ba9c2fa59b5d74a07546021fdf5a772181ed512e82124d3dcfda4";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

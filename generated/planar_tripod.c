@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6c7f9a451ac44e5eaff9673435dddb31621772f1ef028f117d7dae7d1bf60cb7
+ * Derivation hash: 67a56ff79d46180389fb14e97a974ea2098d9be08c7c28ea2559efc097e0ae2e
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "6c7f9a451ac44e5eaff9673435dddb31621772f1ef028f117d7dae7d1bf60cb7";
+const char bonered_derivation_hash[] = "67a56ff79d46180389fb14e97a974ea2098d9be08c7c28ea2559efc097e0ae2e";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

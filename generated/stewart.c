@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4ee7c2c69272dd27b78f77fd1d020a6c38af637e735b0853b7e9b7b20bd1293a
+ * Derivation hash: 6a1869b771f6cd7cf9285ff316e82ae9f324367c46cd4d97081f145a2e54777a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "4ee7c2c69272dd27b78f77fd1d020a6c38af637e735b0853b7e9b7b20bd1293a";
+const char bonered_derivation_hash[] = "6a1869b771f6cd7cf9285ff316e82ae9f324367c46cd4d97081f145a2e54777a";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5b86e2f0427f5451eea32c6e6481b2faab7eb96d8a3b999d52b2af11ae83ad3d
+ * Derivation hash: 60cd742d006f80a3b34c30449be4d64f8aa1af05cbe85bc78ab0ed1138ab20b0
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "5b86e2f0427f5451eea32c6e6481b2faab7eb96d8a3b999d52b2af11ae83ad3d";
+const char bonered_derivation_hash[] = "60cd742d006f80a3b34c30449be4d64f8aa1af05cbe85bc78ab0ed1138ab20b0";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9ada473894ce2a53d7d304b07b354b52336c03f1ee9e97d561076617197f0884
+ * Derivation hash: 6a4aa5a5dc16af8f96fa872bc22602418bf5da3db6f347c626bf819788213f8e
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "9ada473894ce2a53d7d304b07b354b52336c03f1ee9e97d561076617197f0884";
+const char bonered_derivation_hash[] = "6a4aa5a5dc16af8f96fa872bc22602418bf5da3db6f347c626bf819788213f8e";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -59,6 +59,11 @@ def study_quadric(a: StudyLike) -> Any:
     return a[0] * a[4] + a[1] * a[5] + a[2] * a[6] + a[3] * a[7]
 
 
+def cross(a: Sequence[Any], b: Sequence[Any]) -> tuple:
+    """The cross product ``a x b`` of two 3-vectors."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
 def rotation_norm(a: StudyLike) -> Any:
     """``x0^2 + x1^2 + x2^2 + x3^2`` (left side of 004 eq. 2)."""
     return a[0] ** 2 + a[1] ** 2 + a[2] ** 2 + a[3] ** 2

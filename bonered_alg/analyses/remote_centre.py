@@ -54,10 +54,6 @@ def _dot(a, b):
     return sum(x * y for x, y in zip(a, b))
 
 
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
 def line_of(point) -> tuple[tuple, tuple]:
     """``(u, p)`` times ``|x|^2``: the z axis and the origin of the frame ``point``."""
     rows = cv.rotation_matrix_times_norm(point)
@@ -67,14 +63,14 @@ def line_of(point) -> tuple[tuple, tuple]:
 def certificate_holds() -> bool:
     """The two identities of the module docstring, for symbolic vectors (exact)."""
     m, u, n1, n2 = (sp.symbols(f"{c}0:3", real=True) for c in ("m", "u", "n", "k"))
-    c1, c2, big = _cross(m, n1), _cross(m, n2), _cross(n1, n2)
+    c1, c2, big = cv.cross(m, n1), cv.cross(m, n2), cv.cross(n1, n2)
     lhs = [_dot(big, big) * mk for mk in m]
-    t1, t2 = _cross(n1, c1), _cross(c1, n2)
+    t1, t2 = cv.cross(n1, c1), cv.cross(c1, n2)
     rhs = [_dot(n2, n2) * a + _dot(n1, n2) * b + _dot(c2, big) * n
            for a, b, n in zip(t1, t2, n1)]
     ok = all(sp.expand(x - y) == 0 for x, y in zip(lhs, rhs))
     dirs = [x - (n1[k] * _dot(u, n2) - n2[k] * _dot(u, n1))
-            for k, x in enumerate(_cross(u, big))]
+            for k, x in enumerate(cv.cross(u, big))]
     return ok and all(sp.expand(x) == 0 for x in dirs)
 
 
@@ -160,7 +156,7 @@ class RemoteCentre:
     def run(self, d, algebra) -> RemoteCentreResult:
         mech = d.mechanism
         legs = tuple(self._leg(mech, leg, algebra) for leg in mech.closure(self.closure).legs)
-        big = tuple(sp.factor(c) for c in _cross(legs[0].normal, legs[1].normal))
+        big = tuple(sp.factor(c) for c in cv.cross(legs[0].normal, legs[1].normal))
         return RemoteCentreResult(legs, certificate_holds(), big)
 
     def report(self, result: RemoteCentreResult) -> list[str]:

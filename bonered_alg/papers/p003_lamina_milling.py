@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from ..algebra import convention as cv
 from ..algebra import study_numeric as sn
 from ..mechanisms.lamina_milling import (
     L,
@@ -221,10 +222,6 @@ def _verify_workspace(studies) -> list[Verdict]:
     ]
 
 
-def _cross(u, v):
-    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-
-
 def _frame_ok(numerators, denominators, defined) -> bool:
     """Each printed axis (numerator / sqrt(denominator)) is its definition normalized: the
     numerator equals the defining vector and the denominator its squared length."""
@@ -240,8 +237,8 @@ def _verify_frames() -> Verdict:
     xe, ye, ze, xc, yc, zc, xa, ya, za, xf, yf, zf = sp.symbols(
         "x_E y_E z_E x_C y_C z_C x_A y_A z_A x_F y_F z_F", real=True)
     cy = (xe - xc, ye - yc, ze - zc)
-    cz = _cross(cy, (1, 0, 0))
-    cx = _cross(cy, cz)
+    cz = cv.cross(cy, (1, 0, 0))
+    cx = cv.cross(cy, cz)
     a3 = ((ye - yc) ** 2 + (ze - zc) ** 2) ** 2 + (xc - xe) ** 2 * (yc - ye) ** 2
     printed_c = (((-(ye - yc) ** 2 - (ze - zc) ** 2), (xc - xe) * (yc - ye),
                   (xe - xc) * (ze - zc)),
@@ -249,8 +246,8 @@ def _verify_frames() -> Verdict:
     dens_c = (a3 + (xe - xc) ** 2 * (ze - zc) ** 2, (ye - yc) ** 2 + (ze - zc) ** 2)
     ok_c = _frame_ok(printed_c, dens_c, (cx, cz))
     fy = (xa - xf, ya - yf, za - zf)
-    fz = _cross(fy, (0, 0, 1))
-    fx = _cross(fy, fz)
+    fz = cv.cross(fy, (0, 0, 1))
+    fx = cv.cross(fy, fz)
     a6 = ((xa - xf) ** 2 * (za - zf) ** 2 + (ya - yf) ** 2 * (za - zf) ** 2
           + ((xa - xf) ** 2 + (ya - yf) ** 2) ** 2)
     printed_f = (((xa - xf) * (za - zf), (ya - yf) * (za - zf),

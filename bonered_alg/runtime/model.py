@@ -427,13 +427,17 @@ class Model:
         """``(q, dq/dX, status)`` from one solve: ``ik``, ``jacobian`` and
         ``jacobian_status`` together."""
         pose, mode, par, limits = self._ik_args(func, pose, mode, limits, params)
+        q, J, status = self._solve_with_jacobian(pose, mode, par, limits, func, fast)
+        return self.public(q), self._public_jacobian(q, J), status
+
+    def _solve_with_jacobian(self, pose, mode, par, limits, func, fast=None):
+        """``(q, dq/dX, status)`` in the algebra's units (t = tan(q/2) for angle joints), through
+        the compiled fast path where available, else in numpy."""
         compiled = self._fast_path(func, fast, par)
         if compiled is not None:
             q, status, J = compiled.solve(pose, par, mode, limits, True)
-        else:
-            q, J, status = _chunked(pose, par,
-                                    lambda p, pr: self._ik_jacobian(p, mode, pr, limits))
-        return self.public(q), self._public_jacobian(q, J), status
+            return q, J, status
+        return _chunked(pose, par, lambda p, pr: self._ik_jacobian(p, mode, pr, limits))
 
     def _ik_jacobian(self, pose, mode, par, limits):
         q, status = self._solve(pose, mode, par, True, limits)
@@ -473,6 +477,10 @@ class Model:
     # ------------------------------------------------------------ passive joints, twist
     def _passive(self, pose, mode, par):
         q, _ = self.solve(pose, mode, par, False, False)
+        return q, self._passive_of(pose, q, par)
+
+    def _passive_of(self, pose, q, par):
+        """The passive joints at poses ``pose`` with the joints ``q`` (algebraic)."""
         shape = pose.shape[:-1]
         with numpy.errstate(all="ignore"):
             study = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
@@ -492,7 +500,7 @@ class Model:
                     for i, v in zip(idx, vals):
                         out[..., i] = v
                     solved += vals
-        return q, out
+        return out
 
     def passive_joints(self, pose, mode=0, params=None):
         pose = check.pose(self, "passive_joints", pose)
@@ -506,13 +514,18 @@ class Model:
         par = check.parameters(self, "link_poses", params or {})
         q, passive = self._passive(pose, mode, par)
         shape = pose.shape[:-1]
-        out = numpy.full(shape + (len(self.link_names), 8), numpy.nan)
         with numpy.errstate(all="ignore"):
-            study = self.study(*columns(pose), *par)
-            for kern, first, count in self.links:
-                values = stacked(kern(*study, *columns(q), *columns(passive), *par), shape)
-                out[..., first:first + count, :] = values.reshape(shape + (count, 8))
+            out = self.link_points(self.study(*columns(pose), *par), q, passive, par, shape)
             out /= numpy.linalg.norm(out[..., :4], axis=-1, keepdims=True)
+        return out
+
+    def link_points(self, study, q, passive, par, shape):
+        """Every link's Study point (..., links, 8), unnormalized, from the pose's Study
+        coordinates, the joints (algebraic) and the passive joints."""
+        out = numpy.full(shape + (len(self.link_names), 8), numpy.nan)
+        for kern, first, count in self.links:
+            values = stacked(kern(*study, *columns(q), *columns(passive), *par), shape)
+            out[..., first:first + count, :] = values.reshape(shape + (count, 8))
         return out
 
     def static_efforts(self, pose, load, mode=0, method="virtual_work", params=None):
@@ -536,11 +549,12 @@ class Model:
         shape = numpy.broadcast_shapes(pose.shape[:-1], load.shape[:-1])
         pose = numpy.broadcast_to(pose, shape + pose.shape[-1:])
         load = numpy.broadcast_to(load, shape + (3,))
-        q, passive = self._passive(pose, mode, par)
         if method == "free_body":
+            q, passive = self._passive(pose, mode, par)
             return statics.free_body(self, pose, load, q, passive, par)
-        J, _ = self.jacobian_and_status(pose, mode, False, params, func)
-        return statics.efforts(self, pose, load, q, passive, J, par)
+        q, J, _ = self._solve_with_jacobian(pose, mode, par, False, func)  # one solve for both
+        return statics.efforts(self, pose, load, q, self._passive_of(pose, q, par),
+                               self._public_jacobian(q, J), par)
 
     def pose_twist(self, pose, params=None):
         pose = check.pose(self, "pose_twist", pose)

@@ -65,9 +65,7 @@ def spatial_twists(g, dg):
                                  cv.translation_times_norm(x[:4] + dx[4:]))]
     t = [c / n for c in tn]
     dt = [(c - ti * dn) / n for c, ti in zip(dtn, t)]
-    v = [dt[0] - (omega[1] * t[2] - omega[2] * t[1]),
-         dt[1] - (omega[2] * t[0] - omega[0] * t[2]),
-         dt[2] - (omega[0] * t[1] - omega[1] * t[0])]
+    v = [a - b for a, b in zip(dt, cv.cross(omega, t))]
     return numpy.stack(omega + v, axis=-1)
 
 
@@ -106,10 +104,7 @@ def _configuration(model, pose, q, passive, par):
     st: Statics = model.statics
     shape = pose.shape[:-1]
     study = model.study(*columns(pose), *par)
-    links = numpy.full(shape + (len(model.link_names), 8), numpy.nan)
-    for kern, first, count in model.links:
-        values = stacked(kern(*study, *columns(q), *columns(passive), *par), shape)
-        links[..., first:first + count, :] = values.reshape(shape + (count, 8))
+    links = model.link_points(study, q, passive, par, shape)
     legs = []
     for kern, first, count, nvars, owner in st.rates:
         d = stacked(kern(*study, *columns(q), *columns(passive), *par), shape).reshape(
@@ -186,7 +181,6 @@ def free_body(model, pose, load, q, passive, par):
     n_act = len(model.joints)
     with numpy.errstate(all="ignore"):
         links, legs, tx, ee = _configuration(model, pose, q, passive, par)
-        t_alg = q
         # bodies: the platform (0) and every other body of the legs; joints: parent, child
         body_of = {}
         joints = []  # (parent body or None, child body, leg, index in leg)
@@ -222,7 +216,7 @@ def free_body(model, pose, load, q, passive, par):
                 A[..., row, 6 * j:6 * j + 3] = s[..., 3:]  # f . v
                 A[..., row, 6 * j + 3:6 * j + 6] = s[..., :3]  # m . omega
                 if act >= 0:
-                    per_rad = (1.0 + t_alg[..., act] ** 2) / 2.0 if act in model.angles \
+                    per_rad = (1.0 + q[..., act] ** 2) / 2.0 if act in model.angles \
                         else 1.0
                     A[..., row, 6 * len(joints) + act] = -1.0 / per_rad
                 row += 1
