@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e1d5eaf3ff7ba9c2fa59b5d74a07546021fdf5a772181ed512e82124d3dcfda4
+ * Derivation hash: 7da9030941bd34a7c2da789f11af0ca7f8ec88c14ec53e54489c352307178ec9
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "e1d5eaf3ff7ba9c2fa59b5d74a07546021fdf5a772181ed512e82124d3dcfda4";
+const char bonered_derivation_hash[] = "7da9030941bd34a7c2da789f11af0ca7f8ec88c14ec53e54489c352307178ec9";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,22 +3,30 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 67a56ff79d46180389fb14e97a974ea2098d9be08c7c28ea2559efc097e0ae2e
+ * Derivation hash: 610642183f940c2a41863732ec028ea9bfdba265431f01aa075a8aa90dfa856a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "67a56ff79d46180389fb14e97a974ea2098d9be08c7c28ea2559efc097e0ae2e";
+const char bonered_derivation_hash[] = "610642183f940c2a41863732ec028ea9bfdba265431f01aa075a8aa90dfa856a";
 int bonered_abi(void) { return 1; }
 
-/* Study coordinates STUDY_POSE of the pose (POSE). */
-BF_INLINE void _study(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double *restrict out)
+/* Elementary functions of the pose that several stages take. */
+BF_INLINE void _shared(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double *restrict out)
 {
-    const double v__c0 = tan((0.5)*v_gamma);
+    out[0] = tan((0.5)*v_alpha);
+    out[1] = tan((0.5)*v_beta);
+    out[2] = tan((0.5)*v_gamma);
+}
+
+/* Study coordinates STUDY_POSE of the pose (POSE). */
+BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__c0 = v__f2;
     const double v__c1 = v__c0*v_y;
-    const double v__c2 = tan((0.5)*v_alpha);
+    const double v__c2 = v__f0;
     const double v__c3 = (v__c2*v__c2);
     const double v__c4 = v__c3*v_x;
-    const double v__c5 = tan((0.5)*v_beta);
+    const double v__c5 = v__f1;
     const double v__c6 = (v__c5*v__c5);
     const double v__c7 = v__c2*v__c5;
     const double v__c8 = 4.0*v_rb;
@@ -132,20 +140,20 @@ BF_INLINE void _pivots(double v_g, double v_v1, double v_v2, double v_x_1, doubl
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
-BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
 {
-    const double v__c0 = tan((0.5)*v_gamma);
+    const double v__c0 = v__f2;
     const double v__c1 = (v__c0*v__c0);
     const double v__c2 = 1.7320508075688772;
     const double v__c3 = 2.0*v__c2;
     const double v__c4 = v__c0*v__c3;
     const double v__c5 = 3.0*v__c1 - v__c4 - 3.0;
     const double v__c6 = 2.0*v_q4;
-    const double v__c7 = tan((0.5)*v_beta);
+    const double v__c7 = v__f1;
     const double v__c8 = (v__c7*v__c7);
     const double v__c9 = v__c6*v__c8 + v__c6;
     const double v__c10 = 2.0*v_q5;
-    const double v__c11 = tan((0.5)*v_alpha);
+    const double v__c11 = v__f0;
     const double v__c12 = (v__c11*v__c11);
     const double v__c13 = v__c10*v__c12 + v__c10;
     const double v__c14 = 2.0*v_q6;
@@ -327,15 +335,15 @@ BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_alpha, double v
 }
 
 /* Quantities bounded by LIMITS (joint strokes, passive angles). */
-BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+BF_INLINE void _limit_values(double v__f0, double v__f1, double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
 {
     const double v__c0 = sin(v_beta);
     const double v__c1 = v__c0*v_rb;
     const double v__c2 = -v__c1 + v_z;
     const double v__c3 = cos(v_beta);
     const double v__c4 = v__c3*v_rb;
-    const double v__c5 = tan((0.5)*v_alpha);
-    const double v__c6 = tan((0.5)*v_beta);
+    const double v__c5 = v__f0;
+    const double v__c6 = v__f1;
     const double v__c7 = 4.0*v__c5*v__c6*v_rb/(((v__c5*v__c5) + 1.0)*((v__c6*v__c6) + 1.0));
     const double v__c8 = v__c4 - v__c7 - v_ra;
     const double v__c9 = (1.0/sqrt((v__c2*v__c2) + (v__c8*v__c8)));
@@ -369,6 +377,7 @@ static void solve_block(int m, const double *restrict pose, const double *restri
                         signed char *restrict status_out, double *restrict jac_out)
 {
     double P[6][BF_BLOCK], S[10][BF_BLOCK], R[6][BF_BLOCK], Q[6][BF_BLOCK];
+    double F[3][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
     (void)mode;
     for (int i = 0; i < m; i++) {
@@ -380,8 +389,15 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         P[5][i] = pose[i * 6 + 5];
     }
     for (int i = 0; i < m; i++) {
+        double f[3];
+        _shared(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], f);
+        F[0][i] = f[0];
+        F[1][i] = f[1];
+        F[2][i] = f[2];
+    }
+    for (int i = 0; i < m; i++) {
         double s[10];
-        _study(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], s);
+        _study(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], s);
         S[0][i] = s[0];
         S[1][i] = s[1];
         S[2][i] = s[2];
@@ -468,7 +484,7 @@ static void solve_block(int m, const double *restrict pose, const double *restri
     if (limits) {
         for (int i = 0; i < m; i++) {
             double v[12];
-            _limit_values(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], v);
+            _limit_values(F[0][i], F[1][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], v);
             int stroke = 0, passive = 0, status = ST[i];
             stroke |= (v[0] < 175.0) | (v[0] > 250.0);
             stroke |= (v[1] < 175.0) | (v[1] > 250.0);
@@ -499,7 +515,7 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         double J[36][BF_BLOCK];
         for (int i = 0; i < m; i++) {
             double v[48];
-            _jac(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], v);
+            _jac(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], v);
             int status = ST[i];
             int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[6]) | !(fabs(v[1]) > BF_DET_RTOL * v[7]) | !(fabs(v[2]) > BF_DET_RTOL * v[8]) | !(fabs(v[3]) > BF_DET_RTOL * v[9]) | !(fabs(v[4]) > BF_DET_RTOL * v[10]) | !(fabs(v[5]) > BF_DET_RTOL * v[11])) | (status == BF_ON_BOUNDARY);
             J[0][i] = singular ? NAN : v[12];

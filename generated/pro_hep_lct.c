@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 544b0aa321ad688352d578cbcde31683eb93ba64b2e887776ee6b55232df4fd4
+ * Derivation hash: d4eebc72437a18c5fd0addc2e0102b2d0ce6df8d96e5763b6276238c95b0b9ed
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "544b0aa321ad688352d578cbcde31683eb93ba64b2e887776ee6b55232df4fd4";
+const char bonered_derivation_hash[] = "d4eebc72437a18c5fd0addc2e0102b2d0ce6df8d96e5763b6276238c95b0b9ed";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

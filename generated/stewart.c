@@ -3,19 +3,27 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6a1869b771f6cd7cf9285ff316e82ae9f324367c46cd4d97081f145a2e54777a
+ * Derivation hash: 28f59f4a47b87a48b3247493e385f822df7fb2d7ad59e935576b836dcf563cbd
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "6a1869b771f6cd7cf9285ff316e82ae9f324367c46cd4d97081f145a2e54777a";
+const char bonered_derivation_hash[] = "28f59f4a47b87a48b3247493e385f822df7fb2d7ad59e935576b836dcf563cbd";
 int bonered_abi(void) { return 1; }
 
-/* Study coordinates STUDY_POSE of the pose (POSE). */
-BF_INLINE void _study(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+/* Elementary functions of the pose that several stages take. */
+BF_INLINE void _shared(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
-    const double v__c0 = tan((0.5)*v_alpha);
-    const double v__c1 = tan((0.5)*v_beta);
-    const double v__c2 = tan((0.5)*v_gamma);
+    out[0] = tan((0.5)*v_alpha);
+    out[1] = tan((0.5)*v_beta);
+    out[2] = tan((0.5)*v_gamma);
+}
+
+/* Study coordinates STUDY_POSE of the pose (POSE). */
+BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+{
+    const double v__c0 = v__f0;
+    const double v__c1 = v__f1;
+    const double v__c2 = v__f2;
     const double v__c3 = v__c1*v__c2;
     const double v__c4 = v__c0*v__c3;
     const double v__c5 = (1.0/((v__c4 + 1.0)));
@@ -229,16 +237,16 @@ BF_INLINE void _step5_q6(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
-BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
+BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
 {
     const double v__c0 = (v_tb*v_tb);
     const double v__c1 = (v_ta*v_ta);
     const double v__c2 = v__c0*v__c1;
     const double v__c3 = v__c1 + 1.0;
     const double v__c4 = v__c0 + v__c2 + v__c3;
-    const double v__c5 = tan((0.5)*v_beta);
-    const double v__c6 = tan((0.5)*v_alpha);
-    const double v__c7 = tan((0.5)*v_gamma);
+    const double v__c5 = v__f1;
+    const double v__c6 = v__f0;
+    const double v__c7 = v__f2;
     const double v__c8 = v__c6*v__c7;
     const double v__c9 = v__c5 + v__c8;
     const double v__c10 = v__c5*v__c8;
@@ -901,6 +909,7 @@ static void solve_block(int m, const double *restrict pose, const double *restri
                         signed char *restrict status_out, double *restrict jac_out)
 {
     double P[6][BF_BLOCK], S[7][BF_BLOCK], R[6][BF_BLOCK], Q[6][BF_BLOCK];
+    double F[3][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
     (void)mode;
     for (int i = 0; i < m; i++) {
@@ -912,8 +921,15 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         P[5][i] = pose[i * 6 + 5];
     }
     for (int i = 0; i < m; i++) {
+        double f[3];
+        _shared(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], par[2], par[3], f);
+        F[0][i] = f[0];
+        F[1][i] = f[1];
+        F[2][i] = f[2];
+    }
+    for (int i = 0; i < m; i++) {
         double s[7];
-        _study(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], par[2], par[3], s);
+        _study(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], par[2], par[3], s);
         S[0][i] = s[0];
         S[1][i] = s[1];
         S[2][i] = s[2];
@@ -1022,7 +1038,7 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         double J[36][BF_BLOCK];
         for (int i = 0; i < m; i++) {
             double v[48];
-            _jac(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], par[3], v);
+            _jac(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], par[3], v);
             int status = ST[i];
             int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[6]) | !(fabs(v[1]) > BF_DET_RTOL * v[7]) | !(fabs(v[2]) > BF_DET_RTOL * v[8]) | !(fabs(v[3]) > BF_DET_RTOL * v[9]) | !(fabs(v[4]) > BF_DET_RTOL * v[10]) | !(fabs(v[5]) > BF_DET_RTOL * v[11])) | (status == BF_ON_BOUNDARY);
             J[0][i] = singular ? NAN : v[12];

@@ -3,18 +3,25 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6a4aa5a5dc16af8f96fa872bc22602418bf5da3db6f347c626bf819788213f8e
+ * Derivation hash: 959ff83dae6f840f0ec27bfa28cf2d341924878878dc501b43dbca5236c60856
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "6a4aa5a5dc16af8f96fa872bc22602418bf5da3db6f347c626bf819788213f8e";
+const char bonered_derivation_hash[] = "959ff83dae6f840f0ec27bfa28cf2d341924878878dc501b43dbca5236c60856";
 int bonered_abi(void) { return 1; }
 
-/* Study coordinates STUDY_POSE of the pose (POSE). */
-BF_INLINE void _study(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+/* Elementary functions of the pose that several stages take. */
+BF_INLINE void _shared(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     out[0] = tan((0.5)*v_theta1);
     out[1] = tan((0.5)*v_theta2);
+}
+
+/* Study coordinates STUDY_POSE of the pose (POSE). */
+BF_INLINE void _study(double v__f0, double v__f1, double v_theta1, double v_theta2, double v_d, double v_gamma, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+{
+    out[0] = v__f0;
+    out[1] = v__f1;
     out[2] = v_d;
     out[3] = v_d - v_gamma*v_p;
 }
@@ -83,11 +90,11 @@ BF_INLINE void _step3_b2(double v_w1, double v_w2, double v_d1, double v_d2, dou
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
-BF_INLINE void _jac(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_a1, double v_a2, double v_b1, double v_b2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
+BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2, double v_d, double v_gamma, double v_a1, double v_a2, double v_b1, double v_b2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
-    const double v__c0 = tan((0.5)*v_theta2);
+    const double v__c0 = v__f1;
     const double v__c1 = (v__c0*v__c0);
-    const double v__c2 = tan((0.5)*v_theta1);
+    const double v__c2 = v__f0;
     const double v__c3 = (v__c2*v__c2);
     const double v__c4 = v__c1*v__c3;
     const double v__c5 = 2.0*v_a2;
@@ -239,6 +246,7 @@ static void solve_block(int m, const double *restrict pose, const double *restri
                         signed char *restrict status_out, double *restrict jac_out)
 {
     double P[4][BF_BLOCK], S[4][BF_BLOCK], R[4][BF_BLOCK], Q[4][BF_BLOCK];
+    double F[2][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
     (void)mode;
     for (int i = 0; i < m; i++) {
@@ -248,8 +256,14 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         P[3][i] = pose[i * 4 + 3];
     }
     for (int i = 0; i < m; i++) {
+        double f[2];
+        _shared(P[0][i], P[1][i], P[2][i], P[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], f);
+        F[0][i] = f[0];
+        F[1][i] = f[1];
+    }
+    for (int i = 0; i < m; i++) {
         double s[4];
-        _study(P[0][i], P[1][i], P[2][i], P[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], s);
+        _study(F[0][i], F[1][i], P[0][i], P[1][i], P[2][i], P[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], s);
         S[0][i] = s[0];
         S[1][i] = s[1];
         S[2][i] = s[2];
@@ -319,7 +333,7 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         double J[16][BF_BLOCK];
         for (int i = 0; i < m; i++) {
             double v[24];
-            _jac(P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
+            _jac(F[0][i], F[1][i], P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
             int status = ST[i];
             int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[4]) | !(fabs(v[1]) > BF_DET_RTOL * v[5]) | !(fabs(v[2]) > BF_DET_RTOL * v[6]) | !(fabs(v[3]) > BF_DET_RTOL * v[7])) | (status == BF_ON_BOUNDARY);
             J[0][i] = singular ? NAN : v[8];

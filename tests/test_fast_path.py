@@ -167,3 +167,28 @@ def test_numpy_chunks_give_the_unchunked_answer():
         assert np.array_equal(part[1], J[lo:lo + step], equal_nan=True)
         assert np.array_equal(part[2], s[lo:lo + step])
     assert np.array_equal(m.ik(poses, ra=ra, fast=False), q, equal_nan=True)
+
+
+def test_elementary_functions_several_c_kernels_take_are_computed_once():
+    """codegen.c_module: tan(alpha/2), taken by two kernels (one through a temporary), is
+    computed once in ``_shared`` and passed in; a function of a joint, or one kernel's only,
+    is left where it is."""
+    import sympy as sp
+
+    from bonered_alg.codegen.c_module import _shared_functions
+    from bonered_alg.codegen.kernels import c_function, kernel
+
+    a, b, q = sp.symbols("alpha beta q", real=True)
+    k1 = kernel("_k1", [a, b], [sp.tan(a / 2) ** 2 + sp.tan(a / 2), sp.cos(b)], "", c=True)
+    k2 = kernel("_k2", [a, b, q], [sp.tan(a / 2) * q + sp.sin(q), sp.tan(a / 2 + q)], "",
+                c=True)
+    shared = _shared_functions([k1, k2], {"alpha", "beta"})
+    assert shared == [sp.tan(a / 2)]
+    f = {shared[0]: sp.Symbol("_f0")}
+    for k in (k1, k2):
+        source, args = c_function(k, f)
+        assert args == ("_f0", *k.arguments)
+        assert "tan((0.5)*v_alpha)" not in source and "v__f0" in source
+    source, _ = c_function(k2, f)
+    assert "sin(v_q)" in source and "tan(" in source  # tan(alpha/2 + q) stays
+    assert "cos(v_beta)" in c_function(k1, f)[0]

@@ -9,7 +9,7 @@ common-subexpression program, so both evaluate the same operations in the same o
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy as sp
 from sympy.printing.c import C99CodePrinter
@@ -116,6 +116,10 @@ class Kernel:
     c_source: str = ""
     arguments: tuple[str, ...] = ()
     outputs: int = 0
+    # the common-subexpression program (temporaries, outputs) of a C kernel, which
+    # :func:`c_function` prints again with shared values passed in
+    program: tuple = field(default=(), compare=False, repr=False)
+    doc: str = ""
 
 
 def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc: str,
@@ -137,7 +141,70 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
     lines.append(f"    return ({', '.join(outs)},)")
     c_source = _c_function(name, args, subs, reduced, doc) if c else ""
     return Kernel(name, "\n".join(lines) + "\n", ops, c_source,
-                  tuple(str(a) for a in args), len(reduced))
+                  tuple(str(a) for a in args), len(reduced),
+                  (tuple(args), tuple(subs), tuple(reduced)) if c else (), doc)
+
+
+# elementary functions worth computing once per pose for several C kernels
+_SHAREABLE = (sp.tan, sp.sin, sp.cos)
+
+
+def shareable_functions(k: Kernel, names: set[str]) -> dict[sp.Expr, list[sp.Expr]]:
+    """The applications of tan, sin and cos in the C program of ``k`` whose arguments, with
+    the temporaries written out, involve only the variables ``names`` (the pose and the
+    parameters): ``{written-out application: [its forms in the program]}``.  Only small
+    arguments are followed (``tan(gamma/2)``, not the sine of a long expression)."""
+    args, subs, reduced = k.program
+    temps = dict(subs)
+    memo: dict[sp.Symbol, sp.Expr | None] = {}
+
+    def written_out(e: sp.Expr) -> sp.Expr | None:
+        if sp.count_ops(e) > 4:
+            return None
+        rep = {}
+        for s in e.free_symbols:
+            if s in temps:
+                if s not in memo:
+                    memo[s] = written_out(temps[s])
+                if memo[s] is None:
+                    return None
+                rep[s] = memo[s]
+        return e.xreplace(rep) if rep else e
+
+    out: dict[sp.Expr, list[sp.Expr]] = {}
+    for expr in [e for _, e in subs] + list(reduced):
+        for a in sp.sympify(expr).atoms(*_SHAREABLE):
+            arg = written_out(a.args[0])
+            if arg is not None and {str(v) for v in arg.free_symbols} <= names:
+                forms = out.setdefault(a.func(arg), [])
+                if a not in forms:
+                    forms.append(a)
+    return out
+
+
+def c_function(k: Kernel, shared: dict[sp.Expr, sp.Symbol]) -> tuple[str, tuple[str, ...]]:
+    """The C source of ``k`` with the written-out applications ``shared`` maps taken as
+    arguments (placed first) instead of computed, and its argument names."""
+    args, subs, reduced = k.program
+    found = shareable_functions(k, {str(a) for a in args})
+    rep, extra = {}, []
+    for full, sym in shared.items():
+        if full in found:
+            extra.append(sym)
+            for form in found[full]:
+                rep[form] = sym
+    if not rep:
+        return k.c_source, k.arguments
+    subs = [(s, sp.sympify(e).xreplace(rep)) for s, e in subs]
+    reduced = [sp.sympify(e).xreplace(rep) for e in reduced]
+    new_args = [*extra, *args]
+    return (_c_function(k.name, new_args, subs, reduced, k.doc),
+            tuple(str(a) for a in new_args))
+
+
+def c_values(name: str, args: Sequence[sp.Symbol], values: Sequence[sp.Expr], doc: str) -> str:
+    """A C function computing ``values`` of ``args`` as written (no CSE)."""
+    return _c_function(name, args, [], list(values), doc)
 
 
 def _c_function(name, args, subs, reduced, doc) -> str:
