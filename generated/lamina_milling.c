@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7da9030941bd34a7c2da789f11af0ca7f8ec88c14ec53e54489c352307178ec9
+ * Derivation hash: 2c0a0cdf4d80c4e4645e6e68fab58d072e3700dcfb011f5fe246315aa68701a2
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "7da9030941bd34a7c2da789f11af0ca7f8ec88c14ec53e54489c352307178ec9";
+const char bonered_derivation_hash[] = "2c0a0cdf4d80c4e4645e6e68fab58d072e3700dcfb011f5fe246315aa68701a2";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -22,10 +22,10 @@ BF_INLINE void _study(double v_x, double v_y, double v_z, double v_lOA, double v
 BF_INLINE void _step0_L(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_dy1;
-    const double v__c1 = 2.0*v_y;
+    const double v__c1 = 2.0*v_dy2;
     out[0] = 1.0;
     out[1] = -2.0*(-v_dD + v_z);
-    out[2] = v__c0*v_dy2 + v__c0*v_lDE - v__c1*v_dy1 - v__c1*v_dy2 - v__c1*v_lDE + (v_dD*v_dD) - 2.0*v_dD*v_z + (v_dy1*v_dy1) + (v_dy2*v_dy2) + 2.0*v_dy2*v_lDE + (v_lDE*v_lDE) - (v_lEC*v_lEC) + (v_x*v_x) + (v_y*v_y) + (v_z*v_z);
+    out[2] = v__c0*v_dy2 + v__c0*v_lDE + v__c1*v_lDE + (v_dD*v_dD) - 2.0*v_dD*v_z + (v_dy1*v_dy1) + (v_dy2*v_dy2) + (v_lDE*v_lDE) - (v_lEC*v_lEC) + (v_x*v_x) + (v_y*v_y) + v_y*(-v__c0 - v__c1 - 2.0*v_lDE) + (v_z*v_z);
 }
 
 /* Coefficients (A, B, C) of the generator solved for t1 (from platform/1). */
@@ -52,13 +52,13 @@ BF_INLINE void _step2_t2(double v_x, double v_y, double v_z, double v_L, double 
 BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__c0 = 2.0*v_L + 2.0*v_dD - 2.0*v_z;
-    const double v__c1 = 2.0*v_t1;
-    const double v__c2 = (v_x*v_x);
+    const double v__c1 = (v_x*v_x);
+    const double v__c2 = 2.0*v_t1;
     const double v__c3 = (v_y*v_y);
-    const double v__c4 = -v__c1*v__c2 - v__c1*v__c3 - v__c1*(v_lOA*v_lOA) + 2.0*(v_lAF*v_lAF)*v_t1 - 4.0*v_lOA*v_t1*v_x + 4.0*v_lOA*v_y;
+    const double v__c4 = -v__c1*v__c2 - v__c2*v__c3 - 4.0*v_lOA*v_t1*v_x + 4.0*v_lOA*v_y + v_t1*(2.0*(v_lAF*v_lAF) - 2.0*(v_lOA*v_lOA));
     const double v__c5 = 4.0*v_lOB*v_t2;
     const double v__c6 = 2.0*v_t2;
-    const double v__c7 = v__c2*v__c6 + v__c3*v__c6 + v__c5*v_x - v__c6*(v_lBM*v_lBM) + v__c6*(v_lOB*v_lOB) - 4.0*v_lOB*v_y;
+    const double v__c7 = v__c1*v__c6 + v__c3*v__c6 + v__c5*v_x - 4.0*v_lOB*v_y + v_t2*(-2.0*(v_lBM*v_lBM) + 2.0*(v_lOB*v_lOB));
     const double v__c8 = 2.0*v_x;
     const double v__c9 = 2.0*v_y;
     const double v__c10 = -v__c9 + 2.0*v_dy1 + 2.0*v_dy2 + 2.0*v_lDE;

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 610642183f940c2a41863732ec028ea9bfdba265431f01aa075a8aa90dfa856a
+ * Derivation hash: e3376bd2729b0290e890d9d4471ad05db92198b7b8beee4f83e1454bcaf3b210
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "610642183f940c2a41863732ec028ea9bfdba265431f01aa075a8aa90dfa856a";
+const char bonered_derivation_hash[] = "e3376bd2729b0290e890d9d4471ad05db92198b7b8beee4f83e1454bcaf3b210";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */
@@ -88,34 +88,38 @@ BF_INLINE void _step2_q3(double v_g, double v_v1, double v_v2, double v_x_1, dou
 BF_INLINE void _step3_q4(double v_g, double v_v1, double v_v2, double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q1, double v_q2, double v_q3, double v_ra, double v_rb, double *restrict out)
 {
     const double v__c0 = (v_x_2*v_x_2);
-    const double v__c1 = (v_ra*v_ra);
-    const double v__c2 = (v_rb*v_rb);
-    const double v__c3 = 4.0*v_x_2*v_y_3;
+    const double v__c1 = 4.0*v_ra;
+    const double v__c2 = 4.0*v_rb;
+    const double v__c3 = 2.0*v_ra*v_rb;
+    const double v__c4 = (v_ra*v_ra) + (v_rb*v_rb);
     out[0] = v__c0 + 1.0;
     out[1] = 0.0;
-    out[2] = -v__c0*v__c1 - v__c0*v__c2 - 2.0*v__c0*v_ra*v_rb - v__c1 - v__c2 - v__c3*v_ra - v__c3*v_rb + 2.0*v_ra*v_rb - 4.0*v_ra*v_y_1 + 4.0*v_rb*v_y_1 - 4.0*(v_y_1*v_y_1) - 4.0*(v_y_3*v_y_3);
+    out[2] = v__c0*(-v__c3 - v__c4) + v__c3 - v__c4 + v_x_2*v_y_3*(-v__c1 - v__c2) - 4.0*(v_y_1*v_y_1) + v_y_1*(-v__c1 + v__c2) - 4.0*(v_y_3*v_y_3);
 }
 
 /* Coefficients (A, B, C) of the generator solved for q5 (from MP2/T2). */
 BF_INLINE void _step4_q5(double v_g, double v_v1, double v_v2, double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q1, double v_q2, double v_q3, double v_q4, double v_ra, double v_rb, double *restrict out)
 {
     const double v__c0 = (v_x_1*v_x_1);
-    const double v__c1 = (v_ra*v_ra);
-    const double v__c2 = (v_rb*v_rb);
+    const double v__c1 = 4.0*v_ra;
+    const double v__c2 = 2.0*v_ra*v_rb;
+    const double v__c3 = (v_ra*v_ra) + (v_rb*v_rb);
     out[0] = v__c0 + 1.0;
     out[1] = 0.0;
-    out[2] = -v__c0*v__c1 - v__c0*v__c2 - 2.0*v__c0*v_ra*v_rb - v__c1 - v__c2 + 2.0*v_ra*v_rb + 4.0*v_ra*v_x_1*v_y_3 - 4.0*v_ra*v_y_2 + 4.0*v_rb*v_x_1*v_y_3 + 4.0*v_rb*v_y_2 - 4.0*(v_y_2*v_y_2) - 4.0*(v_y_3*v_y_3);
+    out[2] = v__c0*(-v__c2 - v__c3) + v__c2 - v__c3 + v_x_1*v_y_3*(v__c1 + 4.0*v_rb) - 4.0*(v_y_2*v_y_2) + v_y_2*(-v__c1 + 4.0*v_rb) - 4.0*(v_y_3*v_y_3);
 }
 
 /* Coefficients (A, B, C) of the generator solved for q6 (from MP2/T3). */
 BF_INLINE void _step5_q6(double v_g, double v_v1, double v_v2, double v_x_1, double v_x_2, double v_x_3, double v_y_0, double v_y_1, double v_y_2, double v_y_3, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_ra, double v_rb, double *restrict out)
 {
     const double v__c0 = (v_x_2*v_x_2);
-    const double v__c1 = (v_ra*v_ra);
-    const double v__c2 = (v_rb*v_rb);
+    const double v__c1 = 4.0*v_ra;
+    const double v__c2 = 4.0*v_rb;
+    const double v__c3 = 2.0*v_ra*v_rb;
+    const double v__c4 = (v_ra*v_ra) + (v_rb*v_rb);
     out[0] = v__c0 + 1.0;
     out[1] = 0.0;
-    out[2] = -v__c0*v__c1 - v__c0*v__c2 - 2.0*v__c0*v_ra*v_rb - v__c1 - v__c2 + 2.0*v_ra*v_rb + 4.0*v_ra*v_x_2*v_y_3 + 4.0*v_ra*v_y_1 + 4.0*v_rb*v_x_2*v_y_3 - 4.0*v_rb*v_y_1 - 4.0*(v_y_1*v_y_1) - 4.0*(v_y_3*v_y_3);
+    out[2] = v__c0*(-v__c3 - v__c4) + v__c3 - v__c4 + v_x_2*v_y_3*(v__c1 + v__c2) - 4.0*(v_y_1*v_y_1) + v_y_1*(v__c1 - v__c2) - 4.0*(v_y_3*v_y_3);
 }
 
 /* Pivots dG_k/dq_k of the linear IK steps and their row scales (in Study coordinates). */
@@ -181,8 +185,8 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c36 = v__c12*v_x;
     const double v__c37 = v__c8*v_x;
     const double v__c38 = 4.0*v_rb;
-    const double v__c39 = v__c38*v__c7;
-    const double v__c40 = v__c11*v__c39;
+    const double v__c39 = v__c11*v__c38;
+    const double v__c40 = v__c39*v__c7;
     const double v__c41 = v__c36*v__c8;
     const double v__c42 = v__c31*v__c36 + v__c31*v__c37 - v__c31*v__c40 + v__c31*v__c41 + v__c31*v_x;
     const double v__c43 = 6.0*v_ra;
@@ -195,142 +199,134 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c50 = v__c24*v__c35 + v__c27*v__c42 - v__c31*(-v__c3*v__c49 - v__c3*v_q1 + v__c43 + v__c44*v_q1);
     const double v__c51 = v__c11*v__c18;
     const double v__c52 = (0.5)*v__c12 + 0.5;
-    const double v__c53 = v__c39*v__c52;
-    const double v__c54 = (0.5)*v__c23;
-    const double v__c55 = (0.5)*v__c11*v__c20*v__c22*v__c48 - v__c54*(v__c37*v__c51 + v__c45*v__c51 + v__c47*v__c51 + v__c51*v_x + v__c53);
-    const double v__c56 = 4.0*v__c2;
-    const double v__c57 = v__c0*v__c56;
-    const double v__c58 = v__c0*v__c12*v__c8*v_x + v__c0*v__c12*v_x - v__c0*v__c40 + v__c0*v__c8*v_x + v__c0*v_x - v__c32 - v__c33 - v__c34 - v_y;
-    const double v__c59 = v__c11*v__c54;
-    const double v__c60 = v__c54*(v__c0*v__c11*v__c18*v__c8*v_x + v__c0*v__c11*v__c18*v_x - v__c0*v__c53 - v__c33*v__c51 - v__c51*v_y) - v__c58*v__c59;
-    const double v__c61 = v__c55*v__c57 - v__c56*v__c60;
-    const double v__c62 = v__c21*v__c7;
-    const double v__c63 = (0.5)*v__c8;
-    const double v__c64 = v__c63 + 0.5;
-    const double v__c65 = v__c11*v__c38;
-    const double v__c66 = v__c64*v__c65;
-    const double v__c67 = (0.5)*v__c20*v__c22*v__c48*v__c7 - v__c54*(v__c36*v__c62 + v__c45*v__c62 + v__c46*v__c62 + v__c62*v_x + v__c66);
-    const double v__c68 = v__c54*v__c7;
-    const double v__c69 = v__c54*(v__c0*v__c12*v__c21*v__c7*v_x + v__c0*v__c21*v__c7*v_x - v__c0*v__c66 - v__c32*v__c62 - v__c62*v_y) - v__c58*v__c68;
-    const double v__c70 = -v__c56*v__c69 + v__c57*v__c67;
+    const double v__c53 = v__c38*v__c52;
+    const double v__c54 = v__c53*v__c7;
+    const double v__c55 = (0.5)*v__c23;
+    const double v__c56 = (0.5)*v__c11*v__c20*v__c22*v__c48 - v__c55*(v__c37*v__c51 + v__c45*v__c51 + v__c47*v__c51 + v__c51*v_x + v__c54);
+    const double v__c57 = 4.0*v__c2;
+    const double v__c58 = v__c0*v__c57;
+    const double v__c59 = v__c0*v__c12*v__c8*v_x + v__c0*v__c12*v_x - v__c0*v__c40 + v__c0*v__c8*v_x + v__c0*v_x - v__c32 - v__c33 - v__c34 - v_y;
+    const double v__c60 = v__c11*v__c55;
+    const double v__c61 = v__c55*(v__c0*v__c11*v__c18*v__c8*v_x + v__c0*v__c11*v__c18*v_x - v__c0*v__c54 - v__c33*v__c51 - v__c51*v_y) - v__c59*v__c60;
+    const double v__c62 = v__c56*v__c58 - v__c57*v__c61;
+    const double v__c63 = v__c21*v__c7;
+    const double v__c64 = (0.5)*v__c8;
+    const double v__c65 = v__c64 + 0.5;
+    const double v__c66 = v__c39*v__c65;
+    const double v__c67 = (0.5)*v__c20*v__c22*v__c48*v__c7 - v__c55*(v__c36*v__c63 + v__c45*v__c63 + v__c46*v__c63 + v__c63*v_x + v__c66);
+    const double v__c68 = v__c55*v__c7;
+    const double v__c69 = v__c55*(v__c0*v__c12*v__c21*v__c7*v_x + v__c0*v__c21*v__c7*v_x - v__c0*v__c66 - v__c32*v__c63 - v__c63*v_y) - v__c59*v__c68;
+    const double v__c70 = -v__c57*v__c69 + v__c58*v__c67;
     const double v__c71 = 6.0 - v__c4;
-    const double v__c72 = v__c54*v__c71;
+    const double v__c72 = v__c55*v__c71;
     const double v__c73 = v__c3 + v__c44;
     const double v__c74 = v__c19*v__c72 - 0.5*v__c20*v__c22*v__c26*v__c73;
     const double v__c75 = -0.5*v__c20*v__c22*v__c29*v__c73 + v__c26*v__c72;
-    const double v__c76 = 3.0*v__c23*v__c58;
+    const double v__c76 = 3.0*v__c23*v__c59;
     const double v__c77 = v__c2*v__c49 + v__c43;
-    const double v__c78 = v__c31*(-v__c3*v_q2 + v__c44*v_q2 + v__c76 + v__c77) - v__c35*v__c72 + v__c42*v__c54*v__c73;
-    const double v__c79 = v__c55*v__c71 + v__c60*v__c73;
+    const double v__c78 = v__c31*(-v__c3*v_q2 + v__c44*v_q2 + v__c76 + v__c77) - v__c35*v__c72 + v__c42*v__c55*v__c73;
+    const double v__c79 = v__c56*v__c71 + v__c61*v__c73;
     const double v__c80 = v__c67*v__c71 + v__c69*v__c73;
     const double v__c81 = -v__c4 - 6.0;
-    const double v__c82 = v__c54*v__c81;
+    const double v__c82 = v__c55*v__c81;
     const double v__c83 = 2.0*v__c2 - v__c44;
     const double v__c84 = v__c19*v__c82 - 0.5*v__c20*v__c22*v__c26*v__c83;
     const double v__c85 = -0.5*v__c20*v__c22*v__c29*v__c83 + v__c26*v__c82;
-    const double v__c86 = v__c31*(-v__c3*v_q3 + v__c44*v_q3 - v__c76 + v__c77) - v__c35*v__c82 + v__c42*v__c54*v__c83;
-    const double v__c87 = v__c55*v__c81 + v__c60*v__c83;
+    const double v__c86 = v__c31*(-v__c3*v_q3 + v__c44*v_q3 - v__c76 + v__c77) - v__c35*v__c82 + v__c42*v__c55*v__c83;
+    const double v__c87 = v__c56*v__c81 + v__c61*v__c83;
     const double v__c88 = v__c67*v__c81 + v__c69*v__c83;
     const double v__c89 = 4.0*v_ra;
-    const double v__c90 = 4.0*v__c23;
-    const double v__c91 = v__c12*v_z;
-    const double v__c92 = v__c8*v_z;
-    const double v__c93 = v__c17*v_z + v__c91 + v__c92 + v_z;
-    const double v__c94 = v__c65 + v__c93;
-    const double v__c95 = v__c7*v__c94;
-    const double v__c96 = v__c90*v__c95;
-    const double v__c97 = v__c38 - v__c89 - v__c96;
-    const double v__c98 = v__c19*v__c68;
-    const double v__c99 = -v__c65*v__c8 + v__c93;
-    const double v__c100 = v__c7*v__c89;
-    const double v__c101 = v__c100 + v__c39;
-    const double v__c102 = -v__c101 + 4.0*v__c20*v__c22*v__c99;
-    const double v__c103 = v__c19*v__c54;
-    const double v__c104 = -v__c102*v__c103 + v__c97*v__c98;
-    const double v__c105 = v__c38*v__c52;
-    const double v__c106 = v__c51*v__c92 + v__c51*v_z;
-    const double v__c107 = -v__c59*v__c95 + v__c68*(v__c105 + v__c106);
-    const double v__c108 = v__c54*(-v__c105*v__c8 + v__c106);
-    const double v__c109 = -v__c108 + (0.5)*v__c11*v__c20*v__c22*v__c99;
-    const double v__c110 = v__c102*v__c109 + v__c107*v__c97;
-    const double v__c111 = (v_ra*v_ra);
-    const double v__c112 = 2.0*v__c7;
-    const double v__c113 = v__c111*v__c112;
-    const double v__c114 = (v_rb*v_rb);
-    const double v__c115 = v__c112*v__c114;
-    const double v__c116 = v__c100*v_rb;
-    const double v__c117 = 2.0*v__c23*v__c99;
-    const double v__c118 = v__c117*v_ra + v__c117*v_rb;
-    const double v__c119 = v__c62*v__c91 + v__c62*v_z;
-    const double v__c120 = v__c54*(v__c119 - v__c62*v__c65);
-    const double v__c121 = -v__c120 + (0.5)*v__c20*v__c22*v__c7*v__c99;
-    const double v__c122 = v__c119*v__c68 - v__c23*v__c63*v__c94 + v__c54*v__c64*v__c94;
-    const double v__c123 = v__c102*v__c121 + v__c122*v__c97 + v__c64*(v__c112*(v_q4*v_q4) - v__c113 - v__c115 - v__c116 + v__c118);
-    const double v__c124 = v__c11*v__c89;
-    const double v__c125 = v__c90*v__c99;
-    const double v__c126 = v__c124 + v__c125 + v__c65;
-    const double v__c127 = v__c38 - v__c89;
-    const double v__c128 = v__c11*v__c125 + v__c127;
-    const double v__c129 = v__c103*v__c126 + v__c128*v__c19*v__c59;
-    const double v__c130 = v__c121*v__c126 + v__c128*(-v__c11*v__c120 + (0.5)*v__c11*v__c20*v__c22*v__c7*v__c99);
-    const double v__c131 = 2.0*v__c11;
-    const double v__c132 = v__c109*v__c126 + v__c128*(-v__c108*v__c11 + (0.5)*v__c12*v__c20*v__c22*v__c99 - v__c52*v__c54*v__c99) + v__c52*(2.0*v__c11*(v_q5*v_q5) - v__c111*v__c131 - v__c114*v__c131 - v__c118 - v__c124*v_rb);
-    const double v__c133 = -v__c127 - v__c96;
-    const double v__c134 = v__c101 + v__c125;
-    const double v__c135 = -v__c103*v__c134 + v__c133*v__c98;
-    const double v__c136 = v__c107*v__c133 + v__c109*v__c134;
-    const double v__c137 = v__c121*v__c134 + v__c122*v__c133 + v__c64*(-v__c113 - v__c115 - v__c116 - v__c118 + 2.0*v__c7*(v_q6*v_q6));
-    const double v__c138 = (1.0/(v__c5));
-    const double v__c139 = (1.0/(v__c9));
-    const double v__c140 = (1.0/(v__c13));
-    const double v__c141 = (1.0/(v__c15));
+    const double v__c90 = v__c12*v_z;
+    const double v__c91 = v__c8*v_z;
+    const double v__c92 = v__c17*v_z + v__c90 + v__c91 + v_z;
+    const double v__c93 = v__c39 + v__c92;
+    const double v__c94 = v__c23*v__c93;
+    const double v__c95 = 4.0*v__c7*v__c94;
+    const double v__c96 = v__c38 - v__c89 - v__c95;
+    const double v__c97 = v__c38 + v__c89;
+    const double v__c98 = -v__c39*v__c8 + v__c92;
+    const double v__c99 = v__c23*v__c98;
+    const double v__c100 = 4.0*v__c99;
+    const double v__c101 = v__c100 - v__c7*v__c97;
+    const double v__c102 = v__c19*v__c55;
+    const double v__c103 = v__c101*v__c102 - 0.5*v__c19*v__c20*v__c22*v__c7*v__c96;
+    const double v__c104 = v__c51*v__c91 + v__c51*v_z;
+    const double v__c105 = -v__c60*v__c7*v__c93 + v__c68*(v__c104 + v__c53);
+    const double v__c106 = v__c55*(v__c104 - v__c53*v__c8);
+    const double v__c107 = -v__c106 + (0.5)*v__c11*v__c20*v__c22*v__c98;
+    const double v__c108 = v__c101*v__c107 + v__c105*v__c96;
+    const double v__c109 = 2.0*v__c7;
+    const double v__c110 = -v__c89*v_rb - 2.0*(v_ra*v_ra) - 2.0*(v_rb*v_rb);
+    const double v__c111 = v__c110*v__c7;
+    const double v__c112 = 2.0*v_ra + 2.0*v_rb;
+    const double v__c113 = v__c63*v__c90 + v__c63*v_z;
+    const double v__c114 = v__c55*(v__c113 - v__c39*v__c63);
+    const double v__c115 = -v__c114 + (0.5)*v__c20*v__c22*v__c7*v__c98;
+    const double v__c116 = v__c113*v__c68 + v__c55*v__c65*v__c93 - v__c64*v__c94;
+    const double v__c117 = v__c101*v__c115 + v__c116*v__c96 + v__c65*(v__c109*(v_q4*v_q4) + v__c111 + v__c112*v__c99);
+    const double v__c118 = v__c100 + v__c11*v__c97;
+    const double v__c119 = v__c38 - v__c89;
+    const double v__c120 = v__c100*v__c11 + v__c119;
+    const double v__c121 = v__c102*v__c118 + v__c120*v__c19*v__c60;
+    const double v__c122 = v__c115*v__c118 + v__c120*(-v__c11*v__c114 + (0.5)*v__c11*v__c20*v__c22*v__c7*v__c98);
+    const double v__c123 = -v__c112*v__c99;
+    const double v__c124 = v__c107*v__c118 + v__c120*(-v__c106*v__c11 + (0.5)*v__c12*v__c20*v__c22*v__c98 - v__c52*v__c55*v__c98) + v__c52*(v__c11*v__c110 + 2.0*v__c11*(v_q5*v_q5) + v__c123);
+    const double v__c125 = -v__c119 - v__c95;
+    const double v__c126 = v__c100 + v__c7*v__c97;
+    const double v__c127 = v__c102*v__c126 - 0.5*v__c125*v__c19*v__c20*v__c22*v__c7;
+    const double v__c128 = v__c105*v__c125 + v__c107*v__c126;
+    const double v__c129 = v__c115*v__c126 + v__c116*v__c125 + v__c65*(v__c109*(v_q6*v_q6) + v__c111 + v__c123);
+    const double v__c130 = (1.0/(v__c5));
+    const double v__c131 = (1.0/(v__c9));
+    const double v__c132 = (1.0/(v__c13));
+    const double v__c133 = (1.0/(v__c15));
     out[0] = v__c5;
     out[1] = v__c5;
     out[2] = v__c5;
     out[3] = v__c9;
     out[4] = v__c13;
     out[5] = v__c15;
-    out[6] = v__c16 + fabs(v__c28) + fabs(v__c30) + fabs(v__c50) + fabs(v__c61) + fabs(v__c70);
+    out[6] = v__c16 + fabs(v__c28) + fabs(v__c30) + fabs(v__c50) + fabs(v__c62) + fabs(v__c70);
     out[7] = v__c16 + fabs(v__c74) + fabs(v__c75) + fabs(v__c78) + fabs(v__c79) + fabs(v__c80);
     out[8] = v__c16 + fabs(v__c84) + fabs(v__c85) + fabs(v__c86) + fabs(v__c87) + fabs(v__c88);
-    out[9] = fabs(v__c104) + fabs(v__c110) + fabs(v__c123) + fabs(v__c9);
-    out[10] = fabs(v__c129) + fabs(v__c13) + fabs(v__c130) + fabs(v__c132);
-    out[11] = fabs(v__c135) + fabs(v__c136) + fabs(v__c137) + fabs(v__c15);
-    out[12] = v__c138*v__c28;
-    out[13] = v__c138*v__c30;
+    out[9] = fabs(v__c103) + fabs(v__c108) + fabs(v__c117) + fabs(v__c9);
+    out[10] = fabs(v__c121) + fabs(v__c122) + fabs(v__c124) + fabs(v__c13);
+    out[11] = fabs(v__c127) + fabs(v__c128) + fabs(v__c129) + fabs(v__c15);
+    out[12] = v__c130*v__c28;
+    out[13] = v__c130*v__c30;
     out[14] = 0.0;
-    out[15] = -v__c138*v__c61;
-    out[16] = -v__c138*v__c70;
-    out[17] = v__c138*v__c50;
-    out[18] = v__c138*v__c74;
-    out[19] = v__c138*v__c75;
+    out[15] = -v__c130*v__c62;
+    out[16] = -v__c130*v__c70;
+    out[17] = v__c130*v__c50;
+    out[18] = v__c130*v__c74;
+    out[19] = v__c130*v__c75;
     out[20] = 0.0;
-    out[21] = -v__c138*v__c79;
-    out[22] = -v__c138*v__c80;
-    out[23] = -v__c138*v__c78;
-    out[24] = v__c138*v__c84;
-    out[25] = v__c138*v__c85;
+    out[21] = -v__c130*v__c79;
+    out[22] = -v__c130*v__c80;
+    out[23] = -v__c130*v__c78;
+    out[24] = v__c130*v__c84;
+    out[25] = v__c130*v__c85;
     out[26] = 0.0;
-    out[27] = -v__c138*v__c87;
-    out[28] = -v__c138*v__c88;
-    out[29] = -v__c138*v__c86;
+    out[27] = -v__c130*v__c87;
+    out[28] = -v__c130*v__c88;
+    out[29] = -v__c130*v__c86;
     out[30] = 0.0;
     out[31] = 0.0;
-    out[32] = -v__c104*v__c139;
-    out[33] = -v__c110*v__c139;
-    out[34] = -v__c123*v__c139;
+    out[32] = v__c103*v__c131;
+    out[33] = -v__c108*v__c131;
+    out[34] = -v__c117*v__c131;
     out[35] = 0.0;
     out[36] = 0.0;
     out[37] = 0.0;
-    out[38] = v__c129*v__c140;
-    out[39] = -v__c132*v__c140;
-    out[40] = -v__c130*v__c140;
+    out[38] = v__c121*v__c132;
+    out[39] = -v__c124*v__c132;
+    out[40] = -v__c122*v__c132;
     out[41] = 0.0;
     out[42] = 0.0;
     out[43] = 0.0;
-    out[44] = -v__c135*v__c141;
-    out[45] = -v__c136*v__c141;
-    out[46] = -v__c137*v__c141;
+    out[44] = v__c127*v__c133;
+    out[45] = -v__c128*v__c133;
+    out[46] = -v__c129*v__c133;
     out[47] = 0.0;
 }
 

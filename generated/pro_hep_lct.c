@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d4eebc72437a18c5fd0addc2e0102b2d0ce6df8d96e5763b6276238c95b0b9ed
+ * Derivation hash: 162745bc9b156e997e90e51f9c348e4f5531e19a1e4864ae096c91b2b0b13492
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "d4eebc72437a18c5fd0addc2e0102b2d0ce6df8d96e5763b6276238c95b0b9ed";
+const char bonered_derivation_hash[] = "162745bc9b156e997e90e51f9c348e4f5531e19a1e4864ae096c91b2b0b13492";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -49,7 +49,7 @@ BF_INLINE void _step2_t1(double v_yu1, double v_yu2, double v_yd1, double v_yd2,
 BF_INLINE void _step3_w1(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_q4, double v_t1, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     const double v__c0 = 16.0*v_l3*v_yd1;
-    const double v__c1 = (v_d*v_d) - 4.0*v_d*v_lq4d - 8.0*v_d*v_yd2 + 4.0*(v_l3*v_l3) - 4.0*(v_l4*v_l4) + 4.0*(v_lq4d*v_lq4d) + 16.0*v_lq4d*v_yd2 + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
+    const double v__c1 = (v_d*v_d) - 4.0*v_d*v_lq4d + 4.0*(v_l3*v_l3) - 4.0*(v_l4*v_l4) + 4.0*(v_lq4d*v_lq4d) + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2) + v_yd2*(-8.0*v_d + 16.0*v_lq4d);
     out[0] = -v__c0 + v__c1;
     out[1] = -8.0*v_l3*(v_d - 2.0*v_lq4d - 4.0*v_yd2);
     out[2] = v__c0 + v__c1;
@@ -59,49 +59,48 @@ BF_INLINE void _step3_w1(double v_yu1, double v_yu2, double v_yd1, double v_yd2,
 BF_INLINE void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v_t1, double v_w1, double v_q4, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     const double v__c0 = -2.0*v_q4 + 2.0*v_q5;
-    const double v__c1 = 8.0*v_l1;
+    const double v__c1 = 8.0*v_d;
     const double v__c2 = 16.0*v_l1*v_t1;
     const double v__c3 = (v_Xd*v_Xd);
     const double v__c4 = 8.0*v_t1;
     const double v__c5 = (v_Yd*v_Yd);
     const double v__c6 = 2.0*(v_d*v_d);
-    const double v__c7 = -v_Xd*v__c2 + 8.0*v_Yd*v_d*v_t1 + 16.0*v_Yd*v_l1 - v__c1*v_d - v__c3*v__c4 - v__c4*v__c5 - v__c4*(v_l1*v_l1) - v__c6*v_t1 + 8.0*(v_l2*v_l2)*v_t1;
-    const double v__c8 = 16.0*v_Yd;
-    const double v__c9 = 8.0*v_l3;
-    const double v__c10 = 16.0*v_l3;
-    const double v__c11 = v__c10*v_w1;
-    const double v__c12 = 8.0*v_Yd;
-    const double v__c13 = 8.0*v_lq4d;
-    const double v__c14 = 8.0*v_w1;
-    const double v__c15 = v_Xd*v__c11 + v__c10*v_lq4d + v__c12*v_d*v_w1 - v__c13*v_d*v_w1 + v__c14*v__c3 + v__c14*v__c5 + v__c14*(v_l3*v_l3) - v__c14*(v_l4*v_l4) + v__c14*(v_lq4d*v_lq4d) + v__c6*v_w1 - v__c8*v_l3 - v__c8*v_lq4d*v_w1 - v__c9*v_d;
-    const double v__c16 = 2.0*v_Xu - 2.0*v_lq5;
-    const double v__c17 = 8.0*v_Xd;
-    const double v__c18 = (v_t1*v_t1);
-    const double v__c19 = v__c1*v__c18 + v__c17*v__c18 + v__c17 - 8.0*v_l1;
-    const double v__c20 = 4.0*v_d;
-    const double v__c21 = -v__c12*v__c18 - v__c12 + v__c18*v__c20 + v__c2 + v__c20;
-    const double v__c22 = (v_w1*v_w1);
-    const double v__c23 = v__c17*v__c22 + v__c17 + v__c22*v__c9 - v__c9;
-    const double v__c24 = -v__c11 + v__c12*v__c22 + v__c12 - v__c13*v__c22 - v__c13 + v__c20*v__c22 + v__c20;
-    const double v__c25 = (1.0/(v__c7));
-    const double v__c26 = (1.0/(v__c15));
+    const double v__c7 = -v_Xd*v__c2 + 8.0*v_Yd*v_d*v_t1 + 16.0*v_Yd*v_l1 - v__c1*v_l1 - v__c3*v__c4 - v__c4*v__c5 + v_t1*(-v__c6 - 8.0*(v_l1*v_l1) + 8.0*(v_l2*v_l2));
+    const double v__c8 = 16.0*v_lq4d;
+    const double v__c9 = 16.0*v_l3*v_w1;
+    const double v__c10 = 8.0*v_w1;
+    const double v__c11 = v_Xd*v__c9 - 16.0*v_Yd*v_l3 + v_Yd*v_w1*(v__c1 - v__c8) - v__c1*v_l3 + v__c10*v__c3 + v__c10*v__c5 + v__c8*v_l3 + v_w1*(-v__c1*v_lq4d + v__c6 + 8.0*(v_l3*v_l3) - 8.0*(v_l4*v_l4) + 8.0*(v_lq4d*v_lq4d));
+    const double v__c12 = 2.0*v_Xu - 2.0*v_lq5;
+    const double v__c13 = 8.0*v_Xd;
+    const double v__c14 = (v_t1*v_t1);
+    const double v__c15 = v__c13*v__c14 + v__c13 + 8.0*v__c14*v_l1 - 8.0*v_l1;
+    const double v__c16 = 8.0*v_Yd;
+    const double v__c17 = 4.0*v_d;
+    const double v__c18 = -v__c14*v__c16 + v__c14*v__c17 - v__c16 + v__c17 + v__c2;
+    const double v__c19 = 8.0*v_l3;
+    const double v__c20 = (v_w1*v_w1);
+    const double v__c21 = v__c13*v__c20 + v__c13 + v__c19*v__c20 - v__c19;
+    const double v__c22 = v__c17 - 8.0*v_lq4d;
+    const double v__c23 = v__c16*v__c20 + v__c16 + v__c22 - v__c9;
+    const double v__c24 = (1.0/(v__c7));
+    const double v__c25 = (1.0/(v__c11));
     out[0] = 1.0;
     out[1] = v__c0;
     out[2] = v__c7;
-    out[3] = v__c15;
+    out[3] = v__c11;
     out[4] = 2.0;
-    out[5] = fabs(v__c0) + fabs(v__c16);
-    out[6] = fabs(v__c19) + fabs(v__c21) + fabs(v__c7);
-    out[7] = fabs(v__c15) + fabs(v__c23) + fabs(v__c24);
+    out[5] = fabs(v__c0) + fabs(v__c12);
+    out[6] = fabs(v__c15) + fabs(v__c18) + fabs(v__c7);
+    out[7] = fabs(v__c11) + fabs(v__c21) + fabs(v__c20*v__c22 + v__c23);
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = v__c19*v__c25;
-    out[11] = -v__c21*v__c25;
+    out[10] = v__c15*v__c24;
+    out[11] = -v__c18*v__c24;
     out[12] = 0.0;
     out[13] = 0.0;
-    out[14] = -v__c23*v__c26;
-    out[15] = -v__c24*v__c26;
-    out[16] = v__c16/v__c0;
+    out[14] = -v__c21*v__c25;
+    out[15] = v__c25*(-v__c20*v__c22 - v__c23);
+    out[16] = v__c12/v__c0;
     out[17] = 1.0;
     out[18] = 0.0;
     out[19] = 0.0;

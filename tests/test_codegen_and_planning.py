@@ -25,6 +25,33 @@ def test_integer_powers_keep_their_precedence():
     assert np.allclose(got, ref, rtol=1e-15, atol=0)
 
 
+def test_sums_are_grouped_by_their_array_factors():
+    """kernels.scalar_coefficients: terms that differ only in scalar (parameter) factors
+    share one array multiplication; the value is unchanged and Abs stays unevaluated."""
+    from bonered_alg.codegen.kernels import scalar_coefficients
+
+    x, y, ra, rb = sp.symbols("x y ra rb", real=True)
+    e = ra * x + rb * x + ra * rb * x * y - 2 * y + ra + 1 + sp.Abs(ra * x - rb * x,
+                                                                   evaluate=False)
+    g = scalar_coefficients(e, {ra, rb})
+    point = {x: 0.3, y: -1.7, ra: 2.5, rb: 0.25}
+    assert abs(float((g - e).subs(point))) < 1e-15
+    assert x * (ra + rb) in g.args  # one x-term, its coefficient the sum of the two
+    assert any(isinstance(a, sp.Abs) and a.args[0] == (ra - rb) * x for a in g.atoms(sp.Abs))
+    args = [x, y, ra, rb]
+    plain = kernel("_p", args, [e], "")
+    grouped = kernel("_g", args, [e], "", scalars=[ra, rb])
+    f_plain, f_grouped = ({}, {})
+    exec(plain.source, {"numpy": np}, f_plain)
+    exec(grouped.source, {"numpy": np}, f_grouped)
+    xs, ys = np.linspace(-2, 2, 7), np.linspace(1, 3, 7)
+    assert np.allclose(f_plain["_p"](xs, ys, 2.5, 0.25), f_grouped["_g"](xs, ys, 2.5, 0.25),
+                       rtol=1e-14, atol=0)
+    # array operations: x is multiplied once instead of three times (plain: ra*x, rb*x and
+    # the Abs argument)
+    assert grouped.source.count("*x") < plain.source.count("*x")
+
+
 def test_definite_leading_coefficients():
     x, y = sp.symbols("x y", real=True)
     assert _definite(1 + x**2)

@@ -200,7 +200,7 @@ def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symb
             coeffs = [form.scale * form.rotation, sp.Integer(0), -4 * form.scale * form.dual]
         kern = kernel(f"_{prefix}{k}_{st.joint}", [*inputs, *solved, *par], coeffs,
                       f"Coefficients (A, B, C) of the generator solved for {st.joint} "
-                      f"(from {st.source}).", c=c)
+                      f"(from {st.source}).", c=c, scalars=par)
         kernels.append(kern)
         if st.degree == 2:
             mode_bits.append((str(st.joint), bit))
@@ -230,7 +230,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     # the pose is converted to Study coordinates once per call; the IK steps are polynomial
     # in those coordinates
     kernels = [kernel("_study", [*spec.pose, *par], [sub[y] for y in study],
-                      "Study coordinates STUDY_POSE of the pose (POSE).", c=True)]
+                      "Study coordinates STUDY_POSE of the pose (POSE).", c=True,
+                      scalars=par)]
     step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {},
                                                        c=True, compact=spec.compact)
     kernels += step_kernels
@@ -274,17 +275,18 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     if linear:
         kernels.append(kernel("_pivots", [*study, *spec.joints, *par], piv + piv_scale,
                               "Pivots dG_k/dq_k of the linear IK steps and their row scales "
-                              "(in Study coordinates).", c=True))
+                              "(in Study coordinates).", c=True, scalars=par))
     kernels.append(kernel("_jac", args, tri,
                           "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
-                          "substitution: Ji is triangular in the solve order).", c=True))
+                          "substitution: Ji is triangular in the solve order).", c=True,
+                          scalars=par))
     kernels.append(kernel("_ji", args, list(ji), "Input Jacobian dG/dq, row-major."))
     kernels.append(kernel("_jo_study", args, list(jo_study),
                           "Output Jacobian dG/dy in Study coordinates, row-major."))
     if spec.limits:
         kernels.append(kernel("_limit_values", args, [sp.sympify(lim[1]) for lim in spec.limits],
                               "Quantities bounded by LIMITS (joint strokes, passive angles).",
-                              c=True))
+                              c=True, scalars=par))
     pose_functions, functions = [], []
     for fname, outs, exprs, doc in spec.pose_functions:
         kern = kernel(f"_pf_{fname}", [*spec.pose, *par], list(exprs), doc)

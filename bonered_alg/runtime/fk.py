@@ -187,8 +187,8 @@ def input_singular(model, pose, q, par, status):
     closure equations, but the joints do not determine it (e.g. a planar 3-PRP stage turned
     to its input singularity assembles for any strokes)."""
     n = len(model.joints)
+    values = model._jac_values(pose, q, par)  # noqa: SLF001 - the runtime's own helper
     with numpy.errstate(all="ignore"):
-        values = model.jac(*columns(pose), *columns(q), *par)
         singular = model.pivot_singular(values[:n], values[n:2 * n], status.shape)
     return numpy.where((status == OK) & singular, INPUT_SINGULAR, status).astype(numpy.int8)
 

@@ -97,6 +97,18 @@ def columns(a: numpy.ndarray) -> list:
     return [a[..., i] for i in range(a.shape[-1])]
 
 
+def contiguous_columns(a: numpy.ndarray) -> list:
+    """:func:`columns`, each a contiguous copy (numpy's loops are about 1.7 times slower on
+    strided arrays: worth it for a kernel that reads its arguments many times)."""
+    return [contiguous(a[..., i]) for i in range(a.shape[-1])]
+
+
+def contiguous(a: numpy.ndarray) -> numpy.ndarray:
+    """``a``, copied where it is not C-contiguous; its shape kept (0-d included, which
+    ``numpy.ascontiguousarray`` turns into shape (1,))."""
+    return a if a.flags.c_contiguous else numpy.array(a)
+
+
 def stacked(values, shape) -> numpy.ndarray:
     """Kernel outputs (scalars or arrays) broadcast to ``shape`` and stacked on a last axis."""
     return numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)

@@ -30,6 +30,10 @@ SPAN_RAD = 1.4
 SAMPLES = 281
 HALVINGS = 60
 MAX_RELATIVE = 1e-8  # |p| at the bisected point against its largest value on the line
+# distances (fractions of the span) closer than this are a tie, which the first point found
+# (pose axis order, then along the axis) wins: symmetric points (alpha and beta of a
+# symmetric mechanism) otherwise turn on rounding in the last bit
+TIE = 1e-9
 
 
 def _line(home: np.ndarray, axis: int, units) -> np.ndarray:
@@ -66,11 +70,11 @@ def vanishing_configuration(gen, name: str, home: np.ndarray):
             scale = float(np.nanmax(np.abs(v)))
             rel = float(abs(va) / scale) if scale > 0 else float("nan")
             if not rel <= MAX_RELATIVE:  # a pole, or the IK fails before the zero
-                if jump is None or dist < jump[0]:
+                if jump is None or dist < jump[0] - TIE:
                     jump = (dist, pose, gen.POSE[axis], rel, "sign change where the IK "
                             "fails (not bisected to a zero)")
                 continue
-            if best is None or dist < best[0]:
+            if best is None or dist < best[0] - TIE:
                 best = (dist, pose, gen.POSE[axis], rel, "")
     found = best or jump
     return None if found is None else found[1:]
