@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2c0a0cdf4d80c4e4645e6e68fab58d072e3700dcfb011f5fe246315aa68701a2
+ * Derivation hash: 3e5dbc3fbbfed1dcfac577f03288af8df05b8119c8efc460c22ea2a7726a559a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "2c0a0cdf4d80c4e4645e6e68fab58d072e3700dcfb011f5fe246315aa68701a2";
+const char bonered_derivation_hash[] = "3e5dbc3fbbfed1dcfac577f03288af8df05b8119c8efc460c22ea2a7726a559a";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -21,28 +21,34 @@ BF_INLINE void _study(double v_x, double v_y, double v_z, double v_lOA, double v
 /* Coefficients (A, B, C) of the generator solved for L (from platform/U). */
 BF_INLINE void _step0_L(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
-    const double v__c0 = 2.0*v_dy1;
-    const double v__c1 = 2.0*v_dy2;
+    const double v__k0 = 2.0*v_dy1;
+    const double v__k1 = 2.0*v_dy2;
+    const double v__s0 = v__k0*v_dy2 + v__k0*v_lDE + v__k1*v_lDE + (v_dD*v_dD) + (v_dy1*v_dy1) + (v_dy2*v_dy2) + (v_lDE*v_lDE) - (v_lEC*v_lEC);
+    const double v__s1 = -v__k0 - v__k1 - 2.0*v_lDE;
+    const double v__c0 = 2.0*v_z;
     out[0] = 1.0;
-    out[1] = -2.0*(-v_dD + v_z);
-    out[2] = v__c0*v_dy2 + v__c0*v_lDE + v__c1*v_lDE + (v_dD*v_dD) - 2.0*v_dD*v_z + (v_dy1*v_dy1) + (v_dy2*v_dy2) + (v_lDE*v_lDE) - (v_lEC*v_lEC) + (v_x*v_x) + (v_y*v_y) + v_y*(-v__c0 - v__c1 - 2.0*v_lDE) + (v_z*v_z);
+    out[1] = -v__c0 + 2.0*v_dD;
+    out[2] = -v__c0*v_dD + v__s0 + v__s1*v_y + (v_x*v_x) + (v_y*v_y) + (v_z*v_z);
 }
 
 /* Coefficients (A, B, C) of the generator solved for t1 (from platform/1). */
 BF_INLINE void _step1_t1(double v_x, double v_y, double v_z, double v_L, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
-    const double v__c0 = 2.0*v_lOA*v_x;
-    const double v__c1 = -(v_lAF*v_lAF) + (v_lOA*v_lOA) + (v_x*v_x) + (v_y*v_y);
-    out[0] = -v__c0 - v__c1;
+    const double v__s0 = (v_lAF*v_lAF) - (v_lOA*v_lOA);
+    const double v__c0 = (v_x*v_x);
+    const double v__c1 = (v_y*v_y);
+    const double v__c2 = 2.0*v_lOA*v_x;
+    out[0] = -v__c0 - v__c1 - v__c2 + v__s0;
     out[1] = 4.0*v_lOA*v_y;
-    out[2] = v__c0 - v__c1;
+    out[2] = -v__c0 - v__c1 + v__c2 + v__s0;
 }
 
 /* Coefficients (A, B, C) of the generator solved for t2 (from platform/2). */
 BF_INLINE void _step2_t2(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
+    const double v__s0 = -(v_lBM*v_lBM) + (v_lOB*v_lOB);
     const double v__c0 = 2.0*v_lOB*v_x;
-    const double v__c1 = -(v_lBM*v_lBM) + (v_lOB*v_lOB) + (v_x*v_x) + (v_y*v_y);
+    const double v__c1 = v__s0 + (v_x*v_x) + (v_y*v_y);
     out[0] = v__c0 + v__c1;
     out[1] = -4.0*v_lOB*v_y;
     out[2] = -v__c0 + v__c1;
@@ -51,41 +57,53 @@ BF_INLINE void _step2_t2(double v_x, double v_y, double v_z, double v_L, double 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
 BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
+    const double v__k0 = -2.0*(v_lOA*v_lOA);
+    const double v__k1 = 2.0*(v_lAF*v_lAF);
+    const double v__k2 = 2.0*(v_lBM*v_lBM);
+    const double v__k3 = (v_lOB*v_lOB);
+    const double v__k4 = 2.0*v_dy1 + 2.0*v_dy2 + 2.0*v_lDE;
+    const double v__s0 = v__k0;
+    const double v__s1 = v__k1;
+    const double v__s2 = v__k0 + v__k1;
+    const double v__s3 = -v__k2;
+    const double v__s4 = 2.0*v__k3;
+    const double v__s5 = -v__k2 + 2.0*v__k3;
+    const double v__s6 = -v__k4;
+    const double v__s7 = v__k4;
     const double v__c0 = 2.0*v_L + 2.0*v_dD - 2.0*v_z;
     const double v__c1 = (v_x*v_x);
     const double v__c2 = 2.0*v_t1;
     const double v__c3 = (v_y*v_y);
-    const double v__c4 = -v__c1*v__c2 - v__c2*v__c3 - 4.0*v_lOA*v_t1*v_x + 4.0*v_lOA*v_y + v_t1*(2.0*(v_lAF*v_lAF) - 2.0*(v_lOA*v_lOA));
+    const double v__c4 = -v__c1*v__c2 - v__c2*v__c3 + v__s2*v_t1 - 4.0*v_lOA*v_t1*v_x + 4.0*v_lOA*v_y;
     const double v__c5 = 4.0*v_lOB*v_t2;
     const double v__c6 = 2.0*v_t2;
-    const double v__c7 = v__c1*v__c6 + v__c3*v__c6 + v__c5*v_x - 4.0*v_lOB*v_y + v_t2*(-2.0*(v_lBM*v_lBM) + 2.0*(v_lOB*v_lOB));
+    const double v__c7 = v__c1*v__c6 + v__c3*v__c6 + v__c5*v_x + v__s5*v_t2 - 4.0*v_lOB*v_y;
     const double v__c8 = 2.0*v_x;
     const double v__c9 = 2.0*v_y;
-    const double v__c10 = -v__c9 + 2.0*v_dy1 + 2.0*v_dy2 + 2.0*v_lDE;
-    const double v__c11 = (v_t1*v_t1);
-    const double v__c12 = v__c11*v__c9 + v__c9 - 4.0*v_lOA*v_t1;
-    const double v__c13 = v__c11*v__c8 + 2.0*v__c11*v_lOA + v__c8 - 2.0*v_lOA;
-    const double v__c14 = (v_t2*v_t2);
-    const double v__c15 = v__c14*v__c9 - v__c5 + v__c9;
-    const double v__c16 = 2.0*v_lOB;
-    const double v__c17 = v__c14*v__c16 + v__c14*v__c8 - v__c16 + v__c8;
-    const double v__c18 = (1.0/(v__c0));
-    const double v__c19 = (1.0/(v__c4));
-    const double v__c20 = (1.0/(v__c7));
+    const double v__c10 = (v_t1*v_t1);
+    const double v__c11 = v__c10*v__c9 + v__c9 - 4.0*v_lOA*v_t1;
+    const double v__c12 = v__c10*v__c8 + 2.0*v__c10*v_lOA + v__c8 - 2.0*v_lOA;
+    const double v__c13 = (v_t2*v_t2);
+    const double v__c14 = v__c13*v__c9 - v__c5 + v__c9;
+    const double v__c15 = 2.0*v_lOB;
+    const double v__c16 = v__c13*v__c15 + v__c13*v__c8 - v__c15 + v__c8;
+    const double v__c17 = (1.0/(v__c0));
+    const double v__c18 = (1.0/(v__c4));
+    const double v__c19 = (1.0/(v__c7));
     out[0] = v__c0;
     out[1] = v__c4;
     out[2] = v__c7;
-    out[3] = 2.0*fabs(v__c0) + fabs(v__c10) + fabs(v__c8);
-    out[4] = fabs(v__c12) + fabs(v__c13) + fabs(v__c4);
-    out[5] = fabs(v__c15) + fabs(v__c17) + fabs(v__c7);
-    out[6] = -v__c18*v__c8;
-    out[7] = v__c10*v__c18;
+    out[3] = 2.0*fabs(v__c0) + fabs(v__c8) + fabs(v__c9 + v__s6);
+    out[4] = fabs(v__c11) + fabs(v__c12) + fabs(v__c4);
+    out[5] = fabs(v__c14) + fabs(v__c16) + fabs(v__c7);
+    out[6] = -v__c17*v__c8;
+    out[7] = v__c17*(-v__c9 + v__s7);
     out[8] = 1.0;
-    out[9] = v__c13*v__c19;
-    out[10] = v__c12*v__c19;
+    out[9] = v__c12*v__c18;
+    out[10] = v__c11*v__c18;
     out[11] = 0.0;
-    out[12] = -v__c17*v__c20;
-    out[13] = -v__c15*v__c20;
+    out[12] = -v__c16*v__c19;
+    out[13] = -v__c14*v__c19;
     out[14] = 0.0;
 }
 

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 162745bc9b156e997e90e51f9c348e4f5531e19a1e4864ae096c91b2b0b13492
+ * Derivation hash: 27b116cd38a7e5d8c45cd6a6a979f04eecf140781cfde5bc6548a8ebc56358df
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "162745bc9b156e997e90e51f9c348e4f5531e19a1e4864ae096c91b2b0b13492";
+const char bonered_derivation_hash[] = "27b116cd38a7e5d8c45cd6a6a979f04eecf140781cfde5bc6548a8ebc56358df";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -30,16 +30,18 @@ BF_INLINE void _step0_q5(double v_yu1, double v_yu2, double v_yd1, double v_yd2,
 /* Coefficients (A, B, C) of the generator solved for q4 (from Pu/U). */
 BF_INLINE void _step1_q4(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
+    const double v__s0 = (v_ld4*v_ld4) - (v_lq5*v_lq5);
     out[0] = -1.0;
     out[1] = 2.0*v_q5;
-    out[2] = (v_ld4*v_ld4) - (v_lq5*v_lq5) - 4.0*v_lq5*v_yu1 - (v_q5*v_q5) - 4.0*(v_yu1*v_yu1);
+    out[2] = v__s0 - 4.0*v_lq5*v_yu1 - (v_q5*v_q5) - 4.0*(v_yu1*v_yu1);
 }
 
 /* Coefficients (A, B, C) of the generator solved for t1 (from Pd/D1). */
 BF_INLINE void _step2_t1(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_q4, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
+    const double v__s0 = -(v_d*v_d) - 4.0*(v_l1*v_l1) + 4.0*(v_l2*v_l2);
     const double v__c0 = 16.0*v_l1*v_yd1;
-    const double v__c1 = (v_d*v_d) + 8.0*v_d*v_yd2 + 4.0*(v_l1*v_l1) - 4.0*(v_l2*v_l2) + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
+    const double v__c1 = -v__s0 + 8.0*v_d*v_yd2 + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
     out[0] = v__c0 - v__c1;
     out[1] = -8.0*v_l1*(v_d + 4.0*v_yd2);
     out[2] = -v__c0 - v__c1;
@@ -48,59 +50,84 @@ BF_INLINE void _step2_t1(double v_yu1, double v_yu2, double v_yd1, double v_yd2,
 /* Coefficients (A, B, C) of the generator solved for w1 (from Pd/D2). */
 BF_INLINE void _step3_w1(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_q4, double v_t1, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
+    const double v__s0 = (v_d*v_d) - 4.0*v_d*v_lq4d + 4.0*(v_l3*v_l3) - 4.0*(v_l4*v_l4) + 4.0*(v_lq4d*v_lq4d);
+    const double v__s1 = -8.0*v_d + 16.0*v_lq4d;
+    const double v__s2 = v_d - 2.0*v_lq4d;
     const double v__c0 = 16.0*v_l3*v_yd1;
-    const double v__c1 = (v_d*v_d) - 4.0*v_d*v_lq4d + 4.0*(v_l3*v_l3) - 4.0*(v_l4*v_l4) + 4.0*(v_lq4d*v_lq4d) + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2) + v_yd2*(-8.0*v_d + 16.0*v_lq4d);
+    const double v__c1 = v__s0 + v__s1*v_yd2 + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
     out[0] = -v__c0 + v__c1;
-    out[1] = -8.0*v_l3*(v_d - 2.0*v_lq4d - 4.0*v_yd2);
+    out[1] = -8.0*v_l3*(v__s2 - 4.0*v_yd2);
     out[2] = v__c0 + v__c1;
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
 BF_INLINE void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v_t1, double v_w1, double v_q4, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
+    const double v__k0 = 8.0*(v_l1*v_l1);
+    const double v__k1 = 2.0*(v_d*v_d);
+    const double v__k2 = (v_l2*v_l2);
+    const double v__k3 = 8.0*v_d;
+    const double v__k4 = -8.0*(v_l4*v_l4);
+    const double v__k5 = 8.0*(v_l3*v_l3);
+    const double v__k6 = 8.0*(v_lq4d*v_lq4d);
+    const double v__k7 = -v__k3*v_lq4d;
+    const double v__k8 = 4.0*v_d - 8.0*v_lq4d;
+    const double v__s0 = -v__k0;
+    const double v__s1 = -v__k1;
+    const double v__s2 = 8.0*v__k2;
+    const double v__s3 = -v__k0 - v__k1 + 8.0*v__k2;
+    const double v__s4 = -v__k3*v_l1;
+    const double v__s5 = v__k4;
+    const double v__s6 = v__k1;
+    const double v__s7 = v__k5;
+    const double v__s8 = v__k6;
+    const double v__s9 = v__k7;
+    const double v__s10 = v__k1 + v__k4 + v__k5 + v__k6 + v__k7;
+    const double v__s11 = -v__k3*v_l3 + 16.0*v_l3*v_lq4d;
+    const double v__s12 = v__k3 - 16.0*v_lq4d;
+    const double v__s13 = v__k8;
+    const double v__s14 = -v__k8;
     const double v__c0 = -2.0*v_q4 + 2.0*v_q5;
-    const double v__c1 = 8.0*v_d;
+    const double v__c1 = 16.0*v_Yd;
     const double v__c2 = 16.0*v_l1*v_t1;
-    const double v__c3 = (v_Xd*v_Xd);
-    const double v__c4 = 8.0*v_t1;
-    const double v__c5 = (v_Yd*v_Yd);
-    const double v__c6 = 2.0*(v_d*v_d);
-    const double v__c7 = -v_Xd*v__c2 + 8.0*v_Yd*v_d*v_t1 + 16.0*v_Yd*v_l1 - v__c1*v_l1 - v__c3*v__c4 - v__c4*v__c5 + v_t1*(-v__c6 - 8.0*(v_l1*v_l1) + 8.0*(v_l2*v_l2));
-    const double v__c8 = 16.0*v_lq4d;
-    const double v__c9 = 16.0*v_l3*v_w1;
-    const double v__c10 = 8.0*v_w1;
-    const double v__c11 = v_Xd*v__c9 - 16.0*v_Yd*v_l3 + v_Yd*v_w1*(v__c1 - v__c8) - v__c1*v_l3 + v__c10*v__c3 + v__c10*v__c5 + v__c8*v_l3 + v_w1*(-v__c1*v_lq4d + v__c6 + 8.0*(v_l3*v_l3) - 8.0*(v_l4*v_l4) + 8.0*(v_lq4d*v_lq4d));
-    const double v__c12 = 2.0*v_Xu - 2.0*v_lq5;
-    const double v__c13 = 8.0*v_Xd;
-    const double v__c14 = (v_t1*v_t1);
-    const double v__c15 = v__c13*v__c14 + v__c13 + 8.0*v__c14*v_l1 - 8.0*v_l1;
-    const double v__c16 = 8.0*v_Yd;
-    const double v__c17 = 4.0*v_d;
-    const double v__c18 = -v__c14*v__c16 + v__c14*v__c17 - v__c16 + v__c17 + v__c2;
-    const double v__c19 = 8.0*v_l3;
-    const double v__c20 = (v_w1*v_w1);
-    const double v__c21 = v__c13*v__c20 + v__c13 + v__c19*v__c20 - v__c19;
-    const double v__c22 = v__c17 - 8.0*v_lq4d;
-    const double v__c23 = v__c16*v__c20 + v__c16 + v__c22 - v__c9;
-    const double v__c24 = (1.0/(v__c7));
-    const double v__c25 = (1.0/(v__c11));
+    const double v__c3 = 8.0*v_Yd;
+    const double v__c4 = (v_Xd*v_Xd);
+    const double v__c5 = 8.0*v_t1;
+    const double v__c6 = (v_Yd*v_Yd);
+    const double v__c7 = -v_Xd*v__c2 + v__c1*v_l1 + v__c3*v_d*v_t1 - v__c4*v__c5 - v__c5*v__c6 + v__s3*v_t1 + v__s4;
+    const double v__c8 = 16.0*v_l3*v_w1;
+    const double v__c9 = 8.0*v_w1;
+    const double v__c10 = v_Xd*v__c8 + v_Yd*v__s12*v_w1 - v__c1*v_l3 + v__c4*v__c9 + v__c6*v__c9 + v__s10*v_w1 + v__s11;
+    const double v__c11 = 2.0*v_Xu - 2.0*v_lq5;
+    const double v__c12 = 8.0*v_Xd;
+    const double v__c13 = (v_t1*v_t1);
+    const double v__c14 = v__c12*v__c13 + v__c12 + 8.0*v__c13*v_l1 - 8.0*v_l1;
+    const double v__c15 = -v__c3;
+    const double v__c16 = 4.0*v_d;
+    const double v__c17 = v__c13*v__c16 - v__c13*v__c3 + v__c15 + v__c16 + v__c2;
+    const double v__c18 = 8.0*v_l3;
+    const double v__c19 = (v_w1*v_w1);
+    const double v__c20 = v__c12*v__c19 + v__c12 + v__c18*v__c19 - v__c18;
+    const double v__c21 = v__c19*v__c3;
+    const double v__c22 = (1.0/(v__c7));
+    const double v__c23 = (1.0/(v__c10));
     out[0] = 1.0;
     out[1] = v__c0;
     out[2] = v__c7;
-    out[3] = v__c11;
+    out[3] = v__c10;
     out[4] = 2.0;
-    out[5] = fabs(v__c0) + fabs(v__c12);
-    out[6] = fabs(v__c15) + fabs(v__c18) + fabs(v__c7);
-    out[7] = fabs(v__c11) + fabs(v__c21) + fabs(v__c20*v__c22 + v__c23);
+    out[5] = fabs(v__c0) + fabs(v__c11);
+    out[6] = fabs(v__c14) + fabs(v__c17) + fabs(v__c7);
+    out[7] = fabs(v__c10) + fabs(v__c20) + fabs(v__c19*v__s13 + v__c21 + v__c3 - v__c8 + v__s13);
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = v__c15*v__c24;
-    out[11] = -v__c18*v__c24;
+    out[10] = v__c14*v__c22;
+    out[11] = -v__c17*v__c22;
     out[12] = 0.0;
     out[13] = 0.0;
-    out[14] = -v__c21*v__c25;
-    out[15] = v__c25*(-v__c20*v__c22 - v__c23);
-    out[16] = v__c12/v__c0;
+    out[14] = -v__c20*v__c23;
+    out[15] = v__c23*(v__c15 + v__c19*v__s14 - v__c21 + v__c8 + v__s14);
+    out[16] = v__c11/v__c0;
     out[17] = 1.0;
     out[18] = 0.0;
     out[19] = 0.0;

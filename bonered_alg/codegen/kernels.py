@@ -122,21 +122,49 @@ class Kernel:
     doc: str = ""
 
 
-def scalar_coefficients(expr: sp.Expr, scalars: set[sp.Symbol]) -> sp.Expr:
+def scalar_coefficients(expr: sp.Expr, scalars: set[sp.Symbol],
+                        hoisted: dict[sp.Expr, sp.Symbol] | None = None) -> sp.Expr:
     """``expr`` with the terms of every sum grouped by their factors that are not
     ``scalars`` (the geometric parameters, one number per call): ``a*x + b*x`` becomes
-    ``(a + b)*x``, so that CSE computes the coefficient once, as a scalar, and the kernel
-    does one array multiplication instead of two (a Stewart leg's sphere in Study
-    coordinates: 96 array operations to 41)."""
+    ``(a + b)*x``, so that the kernel does one array multiplication instead of two (a
+    Stewart leg's sphere in Study coordinates: 96 array operations to 41).
+
+    With ``hoisted`` (filled in: a compound scalar coefficient -> its placeholder symbol
+    ``_s<k>``), each compound coefficient, the sum of a sum's scalar terms included, is
+    replaced by a placeholder: computed once per call, it costs one array operation where
+    it is used (printed inline, ``a*b*x/c`` is three, and sympy would spread a sum of
+    scalar terms among the array ones)."""
     memo: dict[sp.Expr, sp.Expr] = {}
+    known = set(scalars)
+    defs: dict[sp.Symbol, sp.Expr] = {}
+    if hoisted is not None:
+        for e, sym in hoisted.items():
+            known.add(sym)
+            defs[sym] = e
+
+    def scalar(f: sp.Expr) -> bool:
+        return f.free_symbols <= known
+
+    def name(c: sp.Expr) -> sp.Expr:
+        """A compound scalar ``c`` as its placeholder (a number or a symbol as it is)."""
+        if hoisted is None or c.is_Number or c.is_Symbol or (
+                c.is_Mul and len(c.args) == 2 and c.args[0].is_Number and c.args[1].is_Symbol):
+            return c
+        full = c.xreplace(defs) if defs else c
+        if full not in hoisted:
+            sym = sp.Symbol(f"_s{len(hoisted)}", real=True)
+            hoisted[full] = sym
+            defs[sym] = full
+            known.add(sym)
+        return hoisted[full]
 
     def split(term: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
         if term.is_Mul:
             coeff, rest = [], []
             for f in term.args:
-                (rest if f.free_symbols - scalars else coeff).append(f)
+                (coeff if scalar(f) else rest).append(f)
             return sp.Mul(*coeff), sp.Mul(*rest)
-        if term.free_symbols - scalars:
+        if not scalar(term):
             return sp.Integer(1), term
         return term, sp.Integer(1)
 
@@ -149,13 +177,16 @@ def scalar_coefficients(expr: sp.Expr, scalars: set[sp.Symbol]) -> sp.Expr:
         out = e
         if args != e.args:  # Abs kept unevaluated (sympy's simplification takes minutes)
             out = sp.Abs(args[0], evaluate=False) if isinstance(e, sp.Abs) else e.func(*args)
-        if out.is_Add:
+        if out.is_Add and not scalar(out):
             groups: dict[sp.Expr, list[sp.Expr]] = {}
             for term in out.args:
                 coeff, rest = split(term)
                 groups.setdefault(rest, []).append(coeff)
-            if any(len(v) > 1 for v in groups.values()):
-                out = sp.Add(*[sp.Add(*cs) * rest for rest, cs in groups.items()])
+            if hoisted is not None or any(len(v) > 1 for v in groups.values()):
+                out = sp.Add(*[name(sp.Add(*cs)) * rest for rest, cs in groups.items()])
+        elif out.is_Mul and hoisted is not None and not scalar(out):
+            coeff, rest = split(out)
+            out = name(coeff) * rest
         memo[e] = out
         return out
 
@@ -169,9 +200,16 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
     ``scalars``: the arguments that are one number per call (:func:`scalar_coefficients`)."""
     printer = _Printer({"fully_qualified_modules": True, "allow_unknown_functions": False})
     exprs = [sp.sympify(o) for o in outputs]
+    first: list = []  # the scalar coefficients, computed before the array program
     if scalars:
-        exprs = [scalar_coefficients(e, set(scalars)) for e in exprs]
+        hoisted: dict[sp.Expr, sp.Symbol] = {}
+        exprs = [scalar_coefficients(e, set(scalars), hoisted) for e in exprs]
+        if hoisted:
+            ksubs, kred = sp.cse(list(hoisted), symbols=sp.numbered_symbols("_k"),
+                                 order="canonical")
+            first = list(ksubs) + list(zip(hoisted.values(), kred))
     subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_c"), order="canonical")
+    subs = first + list(subs)
     lines = [f"def {name}({', '.join(str(a) for a in args)}):", f'    """{doc}"""']
     ops = 0
     for sym, expr in subs:

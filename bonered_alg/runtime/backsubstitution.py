@@ -60,15 +60,21 @@ def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False,
                 pivot_zero = bad & (b == 0)  # det Ji = 0 exactly: an input singularity
                 disc = None
             else:
-                sign = -1.0 if (mode >> bit) & 1 else 1.0
+                minus = (mode >> bit) & 1  # the root with -sqrt(disc)
                 bb = b * b
                 disc = bb - 4.0 * a * c
-                ssq = sign * numpy.sqrt(numpy.maximum(disc, 0.0))
-                root = numpy.where(sign * b <= 0.0, (ssq - b) / (2.0 * a), (2.0 * c) / (-b - ssq))
+                ssq = numpy.sqrt(numpy.maximum(disc, 0.0))
+                if minus:  # sign * sqrt and sign * b <= 0 without multiplying by the sign
+                    ssq = -ssq
+                near = (b >= 0.0) if minus else (b <= 0.0)
+                root = numpy.where(near, (ssq - b) / (2.0 * a), (2.0 * c) / (-b - ssq))
                 no_real = disc < -DISC_RTOL * bb
                 bad = no_real | ~numpy.isfinite(root)
                 pivot_zero = None
-            root = numpy.where(bad, numpy.nan, root)
+            if with_status or per_step is not None:
+                # NaN for the later steps (NOT_SOLVED) and the per-step roots; without a
+                # status the failed poses are set to NaN once, at the end
+                root = numpy.where(bad, numpy.nan, root)
             if with_status:
                 new = numpy.where(bad, JOINT_AT_INFINITY, OK)
                 if pivot_zero is not None:
