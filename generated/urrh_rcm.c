@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c756139d99588e46600458d2960e8af0f7176092a694da3650455b479628f10a
+ * Derivation hash: 9b6dc8870477941d08223ff3b1f9dee40e78350f27f2bdee11d90f61a65d3b54
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c756139d99588e46600458d2960e8af0f7176092a694da3650455b479628f10a";
+const char bonered_derivation_hash[] = "9b6dc8870477941d08223ff3b1f9dee40e78350f27f2bdee11d90f61a65d3b54";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

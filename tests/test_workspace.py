@@ -39,6 +39,23 @@ def test_grid_chunks_cover_every_sample_once():
     assert g.axes[2].n == 13 and math.isclose(math.degrees(g.axes[2].step), 5.0)
 
 
+def test_grid_poses_of_any_index_range_are_the_indexed_samples():
+    """Grid.poses builds chunks row by row; every sample must be lo + step * index of its
+    own multi-index (numpy.unravel_index, one sample at a time), bit for bit, for ranges
+    starting and ending anywhere in a row."""
+    g = Grid(POSE, (Axis("x", -1.3, 2.1, 7), Axis("y", 0.0, 5.0, 3), Axis("gamma", -1.0, 0.5, 11)),
+             {"z": 200.0, "alpha": 0.1, "beta": -0.2})
+    idx = np.unravel_index(np.arange(g.size), g.shape)
+    ref = np.empty((g.size, 6))
+    ref[:, 2], ref[:, 3], ref[:, 4] = 200.0, 0.1, -0.2
+    for a, i in zip(g.axes, idx):
+        ref[:, POSE.index(a.name)] = a.lo + a.step * i
+    ranges = [(0, g.size), (0, 1), (5, 6), (10, 11), (10, 33), (11, 44), (3, 200), (230, 231)]
+    ranges += [tuple(sorted(RNG.integers(0, g.size + 1, 2))) for _ in range(200)]
+    for a, b in ranges:
+        assert np.array_equal(g.poses(a, b), ref[a:b]), (a, b)
+
+
 @pytest.mark.parametrize("bad, match", [
     (dict(axes=(Axis("q", 0, 1, 2),), fixed={}), "not pose coordinates"),
     (dict(axes=(Axis("x", 0, 1, 2),), fixed={"z": 1.0}), "neither grid axes nor fixed"),

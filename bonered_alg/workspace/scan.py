@@ -78,15 +78,19 @@ class ScanResult:
 def scan_chunk(mechanism: str | ModuleType, grid: Grid, start: int, stop: int, criteria: Criteria,
                params: Mapping, keep_mask: bool) -> ChunkResult:
     """Classify samples ``start:stop`` of ``grid`` (runs in a worker)."""
-    poses = grid.poses(start, stop)
-    code = classify(mechanism, poses, criteria, **params)
+    values = grid.axis_values(start, stop)
+    code = classify(mechanism, grid.poses(start, stop, values), criteria, **params)
     inside = code == IN_WORKSPACE
     lo, hi = [], []
-    for a in grid.axes:
-        col = poses[inside, grid.pose_names.index(a.name)]
-        lo.append(float(col.min()) if col.size else np.inf)
-        hi.append(float(col.max()) if col.size else -np.inf)
-    values, counts = np.unique(code, return_counts=True)
+    for v in values:  # on the contiguous axis values, with where=: no copies
+        lo.append(float(np.min(v, where=inside, initial=np.inf)))
+        hi.append(float(np.max(v, where=inside, initial=-np.inf)))
+    if code.size and code.min() >= 0:  # status codes: small non-negative integers
+        counts = np.bincount(code)
+        values = np.flatnonzero(counts)
+        counts = counts[values]
+    else:
+        values, counts = np.unique(code, return_counts=True)
     packed = np.packbits(inside).tobytes() if keep_mask else None
     return ChunkResult(start, int(inside.sum()), tuple(lo), tuple(hi),
                        {int(v): int(c) for v, c in zip(values, counts)}, packed)
