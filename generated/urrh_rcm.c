@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9b6dc8870477941d08223ff3b1f9dee40e78350f27f2bdee11d90f61a65d3b54
+ * Derivation hash: 9bcee29a5169f0cc2946164aab89c7d563ad8a700d0473a58c523ac20b7e252a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "9b6dc8870477941d08223ff3b1f9dee40e78350f27f2bdee11d90f61a65d3b54";
+const char bonered_derivation_hash[] = "9bcee29a5169f0cc2946164aab89c7d563ad8a700d0473a58c523ac20b7e252a";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

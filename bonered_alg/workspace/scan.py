@@ -13,10 +13,12 @@ from __future__ import annotations
 
 import itertools
 import os
+import queue
+import threading
 import time
 from collections import Counter
 from collections.abc import Callable, Mapping
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, ThreadPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from multiprocessing import get_context
 from types import ModuleType
@@ -133,10 +135,11 @@ def _run_local(tasks, workers, progress, threads=False):
             if progress:
                 progress(i + 1, len(tasks))
         return out
+    if threads:
+        return _run_threads(tasks, workers, progress)
     out, pending = [], set()
     it = iter(tasks)
-    pool = (ThreadPoolExecutor(max_workers=workers) if threads
-            else ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")))
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"))
     with pool:
         for t in it:
             pending.add(pool.submit(scan_chunk, *t))
@@ -149,6 +152,52 @@ def _run_local(tasks, workers, progress, threads=False):
             out.append(f.result())
             if progress:
                 progress(len(out), len(tasks))
+    return out
+
+
+def _run_threads(tasks, workers, progress):
+    """``scan_chunk`` of every task on ``workers`` threads, each taking the next task when
+    it is done with one (no future per chunk: with the compiled path, a pool's per-chunk
+    scheduling held the two-core scan at 1.7x one core, against 1.9x for this); the main
+    thread only reports progress.  The first error stops every thread and is raised."""
+    lock = threading.Lock()
+    it = iter(tasks)
+    stop = threading.Event()
+    events: queue.SimpleQueue = queue.SimpleQueue()
+
+    def work() -> None:
+        try:
+            while not stop.is_set():
+                with lock:
+                    task = next(it, None)
+                if task is None:
+                    break
+                events.put(scan_chunk(*task))
+        except BaseException as exc:  # noqa: BLE001 - handed to the main thread, raised there
+            stop.set()
+            events.put(exc)
+        finally:
+            events.put(None)
+
+    pool = [threading.Thread(target=work, name=f"bonered_scan_{i}", daemon=True)
+            for i in range(workers)]
+    for t in pool:
+        t.start()
+    out, error, running = [], None, workers
+    while running:
+        item = events.get()
+        if item is None:
+            running -= 1
+        elif isinstance(item, BaseException):
+            error = error or item
+        else:
+            out.append(item)
+            if progress and error is None:
+                progress(len(out), len(tasks))
+    for t in pool:
+        t.join()
+    if error is not None:
+        raise error
     return out
 
 
