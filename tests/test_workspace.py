@@ -485,3 +485,24 @@ def test_home_component_on_a_synthetic_grid():
     res.mask[0, 0] = False
     with pytest.raises(HomeNotReachable, match="not reachable"):
         home_component(res, {"f": s}, {"x": 0.0, "y": 0.0})
+
+
+def test_scan_threads_run_every_chunk_once_and_raise_the_first_error(monkeypatch):
+    """scan._run_threads: each task's result exactly once, progress counted up to the total;
+    an error in one chunk stops the workers and reaches the caller."""
+    from bonered_alg.workspace import scan as scan_module
+
+    seen = []
+
+    def fake_chunk(k, fail):
+        if k == fail:
+            raise RuntimeError(f"chunk {k} failed")
+        return k
+
+    monkeypatch.setattr(scan_module, "scan_chunk", fake_chunk)
+    tasks = [(k, -1) for k in range(37)]
+    out = scan_module._run_threads(tasks, 2, lambda done, total: seen.append((done, total)))
+    assert sorted(out) == list(range(37))
+    assert seen[-1] == (37, 37) and [d for d, _ in seen] == list(range(1, 38))
+    with pytest.raises(RuntimeError, match="chunk 5 failed"):
+        scan_module._run_threads([(k, 5) for k in range(37)], 2, None)
