@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3e5dbc3fbbfed1dcfac577f03288af8df05b8119c8efc460c22ea2a7726a559a
+ * Derivation hash: 67c6023014882689772a402c14ad299144106b7dde6a90a13b40a59055c58949
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "3e5dbc3fbbfed1dcfac577f03288af8df05b8119c8efc460c22ea2a7726a559a";
+const char bonered_derivation_hash[] = "67c6023014882689772a402c14ad299144106b7dde6a90a13b40a59055c58949";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: bddfdce38a439883de442c11d797b68ff609f16c5b24a6a81d4cc4bb491c1c0f
+ * Derivation hash: 762479148be2b5fd904e558476b2c14cd7eead0d236a28803390c614b1a42b2a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "bddfdce38a439883de442c11d797b68ff609f16c5b24a6a81d4cc4bb491c1c0f";
+const char bonered_derivation_hash[] = "762479148be2b5fd904e558476b2c14cd7eead0d236a28803390c614b1a42b2a";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e67e329303044880013a20c28ce2d5a608042d51df283fc0b563c8478e0afd86
+ * Derivation hash: 8ffb9e2945d52c4cc342ae2e7a63830b9159a0f79b678abee3e07e5fe45f727b
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "e67e329303044880013a20c28ce2d5a608042d51df283fc0b563c8478e0afd86";
+const char bonered_derivation_hash[] = "8ffb9e2945d52c4cc342ae2e7a63830b9159a0f79b678abee3e07e5fe45f727b";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

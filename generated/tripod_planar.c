@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 77a58cbf00bc7d8792c5004f25d2ad2b95df618615d565713383a72e7aef6bf8
+ * Derivation hash: 40f91d866cb69bc365a0456eed865d128d6b79ea419cf6a813f7ee793e17236a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "77a58cbf00bc7d8792c5004f25d2ad2b95df618615d565713383a72e7aef6bf8";
+const char bonered_derivation_hash[] = "40f91d866cb69bc365a0456eed865d128d6b79ea419cf6a813f7ee793e17236a";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9bcee29a5169f0cc2946164aab89c7d563ad8a700d0473a58c523ac20b7e252a
+ * Derivation hash: 97d5d3d8a97e530a893ce71786142df6a07ec5dbf0afe8d3f5dc20e89d2a3344
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "9bcee29a5169f0cc2946164aab89c7d563ad8a700d0473a58c523ac20b7e252a";
+const char bonered_derivation_hash[] = "97d5d3d8a97e530a893ce71786142df6a07ec5dbf0afe8d3f5dc20e89d2a3344";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -176,19 +176,20 @@ def test_elementary_functions_several_c_kernels_take_are_computed_once():
     import sympy as sp
 
     from bonered_alg.codegen.c_module import _shared_functions
-    from bonered_alg.codegen.kernels import c_function, kernel
+    from bonered_alg.codegen.kernels import c_function, kernel, shareable_functions
 
     a, b, q = sp.symbols("alpha beta q", real=True)
     k1 = kernel("_k1", [a, b], [sp.tan(a / 2) ** 2 + sp.tan(a / 2), sp.cos(b)], "", c=True)
     k2 = kernel("_k2", [a, b, q], [sp.tan(a / 2) * q + sp.sin(q), sp.tan(a / 2 + q)], "",
                 c=True)
-    shared = _shared_functions([k1, k2], {"alpha", "beta"})
+    found = [shareable_functions(k, {"alpha", "beta"}) for k in (k1, k2)]
+    shared = _shared_functions(found)
     assert shared == [sp.tan(a / 2)]
     f = {shared[0]: sp.Symbol("_f0")}
-    for k in (k1, k2):
-        source, args = c_function(k, f)
+    for k, applications in zip((k1, k2), found):
+        source, args = c_function(k, f, applications)
         assert args == ("_f0", *k.arguments)
         assert "tan((0.5)*v_alpha)" not in source and "v__f0" in source
-    source, _ = c_function(k2, f)
+    source, _ = c_function(k2, f, found[1])
     assert "sin(v_q)" in source and "tan(" in source  # tan(alpha/2 + q) stays
-    assert "cos(v_beta)" in c_function(k1, f)[0]
+    assert "cos(v_beta)" in c_function(k1, f, found[0])[0]

@@ -36,13 +36,13 @@ def _call(k: Kernel, args: Sequence[str], out: str, expected: int) -> str:
     return f"{k.name}({', '.join([*args, out])});"
 
 
-def _shared_functions(kernels: Sequence[Kernel], names: set[str]) -> list[sp.Expr]:
-    """tan, sin and cos of the pose that two or more of ``kernels`` compute (the Study map,
-    the Jacobian and the limits all take tan(angle/2) of the pose's angles), in a
-    deterministic order."""
+def _shared_functions(found: Sequence[dict[sp.Expr, list[sp.Expr]]]) -> list[sp.Expr]:
+    """tan, sin and cos of the pose that two or more kernels compute (``found``: each
+    kernel's :func:`shareable_functions`; the Study map, the Jacobian and the limits all
+    take tan(angle/2) of the pose's angles), in a deterministic order."""
     count: dict[sp.Expr, int] = {}
-    for k in kernels:
-        for full in shareable_functions(k, names):
+    for applications in found:
+        for full in applications:
             count[full] = count.get(full, 0) + 1
     return sorted((f for f, c in count.items() if c > 1), key=sp.srepr)
 
@@ -60,13 +60,14 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
     npose, nstudy, nj, npar = len(pose), len(study_pose), len(joints), len(parameters)
     par = [f"par[{i}]" for i in range(npar)]
     pose_kernels = [k for k in (study, jac, limits_kernel) if k is not None]
-    shared = _shared_functions(pose_kernels, {*pose, *parameters})
+    found = [shareable_functions(k, {*pose, *parameters}) for k in pose_kernels]
+    shared = _shared_functions(found)
     fsyms = {f: sp.Symbol(f"_f{i}") for i, f in enumerate(shared)}
     F = [f"F[{i}][i]" for i in range(len(shared))]
     by_sym = dict(zip(fsyms.values(), F))
     sources, arguments = {}, {}
-    for k in pose_kernels:
-        sources[k.name], used = c_function(k, fsyms)
+    for k, applications in zip(pose_kernels, found):
+        sources[k.name], used = c_function(k, fsyms, applications)
         arguments[k.name] = [by_sym[sp.Symbol(a)] for a in used[:len(used) - len(k.arguments)]]
     kernels = [study, *[k for _, k, _ in steps], *([pivots] if pivots else []), jac,
                *([limits_kernel] if limits_kernel else [])]
@@ -89,10 +90,8 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "",
     ]
     if shared:
-        pose_syms = [sp.Symbol(p_) for p_ in [*pose, *parameters]]
-        lines.append(c_values("_shared", pose_syms, [f.xreplace(
-            {v: sp.Symbol(str(v)) for v in f.free_symbols}) for f in shared],
-            "Elementary functions of the pose that several stages take."))
+        lines.append(c_values("_shared", [sp.Symbol(v) for v in [*pose, *parameters]], shared,
+                              "Elementary functions of the pose that several stages take."))
     for k in kernels:
         lines.append(sources.get(k.name, k.c_source))
     nsteps = len(steps)

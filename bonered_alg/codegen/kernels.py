@@ -263,11 +263,12 @@ def shareable_functions(k: Kernel, names: set[str]) -> dict[sp.Expr, list[sp.Exp
     return out
 
 
-def c_function(k: Kernel, shared: dict[sp.Expr, sp.Symbol]) -> tuple[str, tuple[str, ...]]:
+def c_function(k: Kernel, shared: dict[sp.Expr, sp.Symbol],
+               found: dict[sp.Expr, list[sp.Expr]]) -> tuple[str, tuple[str, ...]]:
     """The C source of ``k`` with the written-out applications ``shared`` maps taken as
-    arguments (placed first) instead of computed, and its argument names."""
+    arguments (placed first) instead of computed, and its argument names; ``found``: the
+    kernel's :func:`shareable_functions`."""
     args, subs, reduced = k.program
-    found = shareable_functions(k, {str(a) for a in args})
     rep, extra = {}, []
     for full, sym in shared.items():
         if full in found:

@@ -80,22 +80,22 @@ class ScanResult:
 def scan_chunk(mechanism: str | ModuleType, grid: Grid, start: int, stop: int, criteria: Criteria,
                params: Mapping, keep_mask: bool) -> ChunkResult:
     """Classify samples ``start:stop`` of ``grid`` (runs in a worker)."""
-    values = grid.axis_values(start, stop)
-    code = classify(mechanism, grid.poses(start, stop, values), criteria, **params)
+    axis_values = grid.axis_values(start, stop)
+    code = classify(mechanism, grid.poses(start, stop, axis_values), criteria, **params)
     inside = code == IN_WORKSPACE
     lo, hi = [], []
-    for v in values:  # on the contiguous axis values, with where=: no copies
+    for v in axis_values:  # on the contiguous axis values, with where=: no copies
         lo.append(float(np.min(v, where=inside, initial=np.inf)))
         hi.append(float(np.max(v, where=inside, initial=-np.inf)))
     if code.size and code.min() >= 0:  # status codes: small non-negative integers
         counts = np.bincount(code)
-        values = np.flatnonzero(counts)
-        counts = counts[values]
+        codes = np.flatnonzero(counts)
+        counts = counts[codes]
     else:
-        values, counts = np.unique(code, return_counts=True)
+        codes, counts = np.unique(code, return_counts=True)
     packed = np.packbits(inside).tobytes() if keep_mask else None
     return ChunkResult(start, int(inside.sum()), tuple(lo), tuple(hi),
-                       {int(v): int(c) for v, c in zip(values, counts)}, packed)
+                       {int(v): int(c) for v, c in zip(codes, counts)}, packed)
 
 
 def _merge(result: ScanResult, parts: list[ChunkResult], keep_mask: bool) -> None:
