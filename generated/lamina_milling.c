@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 67c6023014882689772a402c14ad299144106b7dde6a90a13b40a59055c58949
+ * Derivation hash: f2a073b3196c01b751f36d134730f2fbd722998343fad4891c882656b3c0c96f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "67c6023014882689772a402c14ad299144106b7dde6a90a13b40a59055c58949";
+const char bonered_derivation_hash[] = "f2a073b3196c01b751f36d134730f2fbd722998343fad4891c882656b3c0c96f";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

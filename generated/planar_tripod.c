@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 762479148be2b5fd904e558476b2c14cd7eead0d236a28803390c614b1a42b2a
+ * Derivation hash: 66bc9d916a2aa892734278f0a951c2e506826df6202122e1b43d55c1162826ec
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "762479148be2b5fd904e558476b2c14cd7eead0d236a28803390c614b1a42b2a";
+const char bonered_derivation_hash[] = "66bc9d916a2aa892734278f0a951c2e506826df6202122e1b43d55c1162826ec";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ba2a15525388ed6a582da91c5640400f37455632167ab0cea83568acc9100d4e
+ * Derivation hash: 5cb7ae4d3bdddc43b2adff11e272c5d89134008c5ff27ca17fd8d8c8c93a644a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "ba2a15525388ed6a582da91c5640400f37455632167ab0cea83568acc9100d4e";
+const char bonered_derivation_hash[] = "5cb7ae4d3bdddc43b2adff11e272c5d89134008c5ff27ca17fd8d8c8c93a644a";
 int bonered_abi(void) { return 1; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 40f91d866cb69bc365a0456eed865d128d6b79ea419cf6a813f7ee793e17236a
+ * Derivation hash: abbec8481d1915ad6770aed90815deaca5ca3ed51f896fee12ca656a896a7421
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "40f91d866cb69bc365a0456eed865d128d6b79ea419cf6a813f7ee793e17236a";
+const char bonered_derivation_hash[] = "abbec8481d1915ad6770aed90815deaca5ca3ed51f896fee12ca656a896a7421";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 97d5d3d8a97e530a893ce71786142df6a07ec5dbf0afe8d3f5dc20e89d2a3344
+ * Derivation hash: 2c86ad97285d2d40f91cab03179a1f4dc29cb083e87266291a963f0a4d966198
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "97d5d3d8a97e530a893ce71786142df6a07ec5dbf0afe8d3f5dc20e89d2a3344";
+const char bonered_derivation_hash[] = "2c86ad97285d2d40f91cab03179a1f4dc29cb083e87266291a963f0a4d966198";
 int bonered_abi(void) { return 1; }
 
 /* Elementary functions of the pose that several stages take. */

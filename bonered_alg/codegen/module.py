@@ -93,7 +93,7 @@ def _abs(e: sp.Expr) -> sp.Expr:
 
 def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
                          joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol],
-                         sub: dict) -> list:
+                         sub: dict, compact: dict | None = None) -> list:
     """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21).
 
     Generator ``k`` involves only joints solved at steps ``<= k``, so ``dG/dq`` in the solve
@@ -101,13 +101,30 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
     with the pivot ``d_k = dg_k/dq_k``; ``det Ji = prod d_k``.  The generators are written in
     the Study coordinates ``sub`` maps to the pose, and ``dg/dX`` is taken by the chain rule,
     ``sum_i dg/ds_i ds_i/dX``: differentiating the substituted generator instead multiplies
-    out the pose map into every partial (the Stewart platform's kernel was 4x larger).
+    out the pose map into every partial (the Stewart platform's kernel was 4x larger).  A
+    step in ``compact`` (a distance leg, whose generator involves its own stroke only) takes
+    its row from the leg's line (:mod:`..kinematics.leg_lines`), with the same ratio of pivot
+    to row scale.
     """
+    from ..kinematics import leg_lines
+
     study = list(sub)
     ds = [[sp.diff(sub[s], x) for x in pose] for s in study]
+    frames: dict[tuple, leg_lines.PlatformFrame] = {}
     rows: dict[sp.Symbol, list[sp.Expr]] = {}
     pivots, scales = [], []
     for st, g in zip(steps, gens):
+        form = (compact or {}).get(st.joint)
+        if form is not None and form.platform:
+            if form.platform not in frames:
+                frames[form.platform] = leg_lines.platform_frame(
+                    [sp.sympify(c).subs(sub) for c in form.platform], pose)
+            d, scale, row = leg_lines.distance_row(frames[form.platform], form.base,
+                                                   form.point, st.joint)
+            rows[st.joint] = row
+            pivots.append(d)
+            scales.append(scale)
+            continue
         d = sp.diff(g, st.joint).subs(sub)
         dgs = [sp.diff(g, s).subs(sub) for s in study]
         dgx = [sp.Add(*[a * ds[i][m] for i, a in enumerate(dgs) if a != 0 and ds[i][m] != 0])
@@ -265,7 +282,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     g_pose = [g.subs(sub) for g in gens]
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
     jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
-    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, sub)
+    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, sub, compact)
     # pivots of linear steps that can vanish (a constant pivot never does)
     linear = [k for k, st in enumerate(spec.steps)
               if st.degree == 1 and not sp.diff(gens[k], st.joint).is_number]

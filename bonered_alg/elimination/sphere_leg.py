@@ -208,6 +208,11 @@ class CompactSphere:
     scale: sp.Expr
     rotation: sp.Expr  # R = x0'^2 + ... + x3'^2
     dual: sp.Expr  # D = y0'^2 + ... + y3'^2
+    # the leg's geometry, constants substituted: base point A, platform point B, and the
+    # platform's Study point X (in the Study coordinates) of M = T(-A) X T(B)
+    base: tuple = ()
+    point: tuple = ()
+    platform: tuple = ()
 
     def generator(self) -> sp.Expr:
         return self.scale * (self.stroke**2 * self.rotation - 4 * self.dual)
@@ -242,4 +247,7 @@ def compact_sphere(d: DistanceLeg, platform: tuple, generator: sp.Expr,
     # the difference is a rational function whose numerator must vanish
     if sp.expand(sp.numer(sp.together(den * target - num * expanded))) != 0:
         return None
-    return CompactSphere(d.stroke, scale, rot, dual)
+    return CompactSphere(d.stroke, scale, rot, dual,
+                         tuple(sp.sympify(c).subs(sub) for c in d.base),
+                         tuple(sp.sympify(c).subs(sub) for c in d.platform),
+                         tuple(sp.sympify(c).subs(sub) for c in platform))
