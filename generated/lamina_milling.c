@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f2a073b3196c01b751f36d134730f2fbd722998343fad4891c882656b3c0c96f
+ * Derivation hash: c6b5dcbdd50c1869dfd47af49e5cfd72be6bccdc889989c7812f0a5762739a53
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "f2a073b3196c01b751f36d134730f2fbd722998343fad4891c882656b3c0c96f";
-int bonered_abi(void) { return 1; }
+const char bonered_derivation_hash[] = "c6b5dcbdd50c1869dfd47af49e5cfd72be6bccdc889989c7812f0a5762739a53";
+int bonered_abi(void) { return 2; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
 BF_INLINE void _study(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
@@ -203,4 +203,65 @@ void bonered_solve(long n, const double *pose, const double *par_in, int mode,
         solve_block(m, pose + lo * 3, par, mode, limits, q + lo * 3,
                     status + lo, jac ? jac + lo * 9 : 0);
     }
+}
+
+/* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
+ * lo[a] + step[a] * i on pose coordinate coord[a], the others are fixed[]; modes[]:
+ * the working modes tried, in order.  Adds to count (returned), axis_lo/axis_hi
+ * (running extremes of the reached samples), reasons[code] and, where packed is not
+ * NULL, sets bit 7 - j % 8 of packed[j / 8] for each reached sample j - start. */
+long bonered_scan(long start, long stop, int naxes, const long *shape,
+                  const double *lo, const double *step, const int *coord,
+                  const double *fixed, int nmodes, const int *modes,
+                  const double *par_in, double *axis_lo, double *axis_hi,
+                  long *reasons, unsigned char *packed)
+{
+    double par[21];
+    for (int k = 0; k < 21; k++)
+        par[k] = par_in[k];
+    double pose[BF_BLOCK * 3], q[BF_BLOCK * 3];
+    signed char st[BF_BLOCK];
+    int code[BF_BLOCK];
+    long idx[3];
+    long rest = start;
+    for (int a = naxes - 1; a >= 0; a--) {
+        idx[a] = rest % shape[a];
+        rest /= shape[a];
+    }
+    long count = 0;
+    for (long b = start; b < stop; b += BF_BLOCK) {
+        int m = stop - b < BF_BLOCK ? (int)(stop - b) : BF_BLOCK;
+        for (int i = 0; i < m; i++) {
+            for (int k = 0; k < 3; k++)
+                pose[i * 3 + k] = fixed[k];
+            for (int a = 0; a < naxes; a++)
+                pose[i * 3 + coord[a]] = lo[a] + step[a] * (double)idx[a];
+            for (int a = naxes - 1; a >= 0; a--) {  /* the next sample, C order */
+                if (++idx[a] < shape[a])
+                    break;
+                idx[a] = 0;
+            }
+        }
+        for (int k = 0; k < nmodes; k++) {
+            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            for (int i = 0; i < m; i++)
+                code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
+        }
+        for (int i = 0; i < m; i++) {
+            reasons[code[i]] += 1;
+            if (code[i] != 0)
+                continue;
+            count++;
+            for (int a = 0; a < naxes; a++) {
+                double v = pose[i * 3 + coord[a]];
+                axis_lo[a] = v < axis_lo[a] ? v : axis_lo[a];
+                axis_hi[a] = v > axis_hi[a] ? v : axis_hi[a];
+            }
+            if (packed) {
+                long j = b - start + i;
+                packed[j >> 3] |= (unsigned char)(0x80u >> (j & 7));
+            }
+        }
+    }
+    return count;
 }

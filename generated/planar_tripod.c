@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 66bc9d916a2aa892734278f0a951c2e506826df6202122e1b43d55c1162826ec
+ * Derivation hash: 112501fde5ef7ce8d6cb3ab980d6b034e2b76d3e085bd8e5cb2111bbb5110b67
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "66bc9d916a2aa892734278f0a951c2e506826df6202122e1b43d55c1162826ec";
-int bonered_abi(void) { return 1; }
+const char bonered_derivation_hash[] = "112501fde5ef7ce8d6cb3ab980d6b034e2b76d3e085bd8e5cb2111bbb5110b67";
+int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */
 BF_INLINE void _shared(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double *restrict out)
@@ -22,33 +22,26 @@ BF_INLINE void _shared(double v_x, double v_y, double v_z, double v_alpha, doubl
 BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double *restrict out)
 {
     const double v__c0 = v__f2;
-    const double v__c1 = v__c0*v_y;
+    const double v__c1 = (0.5)*v_y;
     const double v__c2 = v__f0;
-    const double v__c3 = (v__c2*v__c2);
-    const double v__c4 = v__c3*v_x;
-    const double v__c5 = v__f1;
-    const double v__c6 = (v__c5*v__c5);
-    const double v__c7 = v__c2*v__c5;
-    const double v__c8 = 4.0*v_rb;
-    const double v__c9 = v__c7*v__c8;
-    const double v__c10 = v__c1*v__c3;
-    const double v__c11 = (0.5)/((v__c3 + 1.0)*(v__c6 + 1.0));
-    const double v__c12 = v__c3*v_y;
-    const double v__c13 = v__c2*v__c8;
-    const double v__c14 = v__c3*v_z;
-    const double v__c15 = v__c14*v__c6 + v__c14 + v__c6*v_z + v_z;
-    const double v__c16 = v__c11*(v__c13 + v__c15);
-    const double v__c17 = v__c11*(-v__c13*v__c6 + v__c15);
+    const double v__c3 = v__f1;
+    const double v__c4 = v__c2*v__c3;
+    const double v__c5 = (v__c2*v__c2);
+    const double v__c6 = (v__c3*v__c3);
+    const double v__c7 = 2.0*v_rb/((v__c5 + 1.0)*(v__c6 + 1.0));
+    const double v__c8 = v__c4*v__c7;
+    const double v__c9 = (0.5)*v_z;
+    const double v__c10 = v__c5*v__c7;
     out[0] = v__c0;
-    out[1] = -v__c11*(v__c1*v__c6 + v__c1 + v__c10*v__c6 + v__c10 + v__c4*v__c6 + v__c4 + v__c6*v_x + v__c9 + v_x);
-    out[2] = v__c11*(v__c0*v__c3*v__c6*v_x + v__c0*v__c3*v_x + v__c0*v__c6*v_x - v__c0*v__c9 + v__c0*v_x - v__c12*v__c6 - v__c12 - v__c6*v_y - v_y);
+    out[1] = -v__c0*v__c1 - v__c8 - 0.5*v_x;
+    out[2] = -v__c0*v__c8 + (0.5)*v__c0*v_x - v__c1;
     out[3] = v__c2;
-    out[4] = v__c5;
-    out[5] = -v__c7;
-    out[6] = -v__c16*v__c7;
-    out[7] = v__c16*v__c5;
-    out[8] = -v__c17*v__c2;
-    out[9] = -v__c17;
+    out[4] = v__c3;
+    out[5] = -v__c4;
+    out[6] = -v__c10*v__c3 - v__c4*v__c9;
+    out[7] = v__c3*v__c9 + v__c8;
+    out[8] = v__c10*v__c6 - v__c2*v__c9;
+    out[9] = v__c2*v__c6*v__c7 - v__c9;
 }
 
 /* Coefficients (A, B, C) of the generator solved for q1 (from MP1/P1). */
@@ -200,19 +193,20 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__k10 = 2.0*v_ra + 2.0*v_rb;
     const double v__s0 = -v__k1;
     const double v__s1 = -v__k2;
-    const double v__s2 = v__k2;
-    const double v__s3 = v__k1;
+    const double v__s2 = v__k1;
+    const double v__s3 = v__k2;
     const double v__s4 = v__k0;
-    const double v__s5 = -v__k5;
-    const double v__s6 = -v__k6;
-    const double v__s7 = -v__k7;
-    const double v__s8 = -v__k8;
-    const double v__s9 = -v__k9;
-    const double v__s10 = -v__k7 - v__k8 - v__k9;
-    const double v__s11 = v__k10;
-    const double v__s12 = v__k5;
-    const double v__s13 = -v__k10;
-    const double v__s14 = v__k6;
+    const double v__s5 = -v__k0;
+    const double v__s6 = -v__k5;
+    const double v__s7 = -v__k6;
+    const double v__s8 = -v__k7;
+    const double v__s9 = -v__k8;
+    const double v__s10 = -v__k9;
+    const double v__s11 = -v__k7 - v__k8 - v__k9;
+    const double v__s12 = v__k10;
+    const double v__s13 = v__k5;
+    const double v__s14 = -v__k10;
+    const double v__s15 = v__k6;
     const double v__c0 = v__f2;
     const double v__c1 = v__c0*v__s0;
     const double v__c2 = (v__c0*v__c0);
@@ -227,167 +221,150 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c11 = v__c10*v__c8 + v__c8;
     const double v__c12 = 2.0*v_q6;
     const double v__c13 = v__c12*v__c6 + v__c12;
-    const double v__c14 = fabs(v__c3);
-    const double v__c15 = v__c10*v__c6;
-    const double v__c16 = v__c10 + 1.0;
-    const double v__c17 = v__c15 + v__c16 + v__c6;
-    const double v__c18 = (1.0/(v__c16));
-    const double v__c19 = v__c6 + 1.0;
-    const double v__c20 = (1.0/(v__c19));
-    const double v__c21 = v__c18*v__c20;
-    const double v__c22 = v__c1*v__c21;
-    const double v__c23 = v__c0*v__c6;
-    const double v__c24 = v__c0*v__c10 + v__c0*v__c15 + v__c0 + v__c23;
-    const double v__c25 = v__c21*v__s0;
-    const double v__c26 = -v__c17;
-    const double v__c27 = (0.5)*v__c2 + 0.5;
-    const double v__c28 = v__c10*v_y;
-    const double v__c29 = v__c6*v_y;
-    const double v__c30 = v__c28*v__c6;
-    const double v__c31 = v__c27*v__c28 + v__c27*v__c29 + v__c27*v__c30 + v__c27*v_y;
-    const double v__c32 = v__c10*v_x;
-    const double v__c33 = v__c6*v_x;
-    const double v__c34 = 4.0*v_rb;
-    const double v__c35 = v__c34*v__c9;
-    const double v__c36 = v__c35*v__c5;
-    const double v__c37 = v__c32*v__c6;
-    const double v__c38 = v__c27*v__c32 + v__c27*v__c33 - v__c27*v__c36 + v__c27*v__c37 + v__c27*v_x;
-    const double v__c39 = 6.0*v_ra;
-    const double v__c40 = 6.0*v__c0;
-    const double v__c41 = v__c0*v_y;
-    const double v__c42 = v__c0*v__c28;
-    const double v__c43 = v__c0*v__c29;
-    const double v__c44 = v__c23*v__c28 + v__c32 + v__c33 + v__c36 + v__c37 + v__c41 + v__c42 + v__c43 + v_x;
-    const double v__c45 = v__c27*(v__c25*v__c44 + v__c39 + v__c40*v_q1 + v__s0*v_q1);
-    const double v__c46 = v__c16*v__c9;
-    const double v__c47 = (0.5)*v__c10 + 0.5;
-    const double v__c48 = v__c34*v__c47;
-    const double v__c49 = v__c48*v__c5;
-    const double v__c50 = (0.5)*v__c21;
-    const double v__c51 = (0.5)*v__c18*v__c20*v__c44*v__c9 - v__c50*(v__c33*v__c46 + v__c41*v__c46 + v__c43*v__c46 + v__c46*v_x + v__c49);
-    const double v__c52 = v__c0*v__s2;
-    const double v__c53 = v__c0*v__c10*v__c6*v_x + v__c0*v__c10*v_x - v__c0*v__c36 + v__c0*v__c6*v_x + v__c0*v_x - v__c28 - v__c29 - v__c30 - v_y;
-    const double v__c54 = v__c50*v__c9;
-    const double v__c55 = v__c50*(v__c0*v__c16*v__c6*v__c9*v_x + v__c0*v__c16*v__c9*v_x - v__c0*v__c49 - v__c29*v__c46 - v__c46*v_y) - v__c53*v__c54;
-    const double v__c56 = v__c19*v__c5;
-    const double v__c57 = (0.5)*v__c6;
-    const double v__c58 = v__c57 + 0.5;
-    const double v__c59 = v__c35*v__c58;
-    const double v__c60 = (0.5)*v__c18*v__c20*v__c44*v__c5 - v__c50*(v__c32*v__c56 + v__c41*v__c56 + v__c42*v__c56 + v__c56*v_x + v__c59);
-    const double v__c61 = v__c5*v__c50;
-    const double v__c62 = v__c50*(v__c0*v__c10*v__c19*v__c5*v_x + v__c0*v__c19*v__c5*v_x - v__c0*v__c59 - v__c28*v__c56 - v__c56*v_y) - v__c53*v__c61;
-    const double v__c63 = v__c1 + 6.0;
-    const double v__c64 = v__c50*v__c63;
-    const double v__c65 = v__c40 + v__s3;
-    const double v__c66 = v__c50*v__c65;
-    const double v__c67 = -v__c17*v__c64 + v__c24*v__c66;
-    const double v__c68 = -v__c24*v__c64 + v__c26*v__c66;
-    const double v__c69 = 3.0*v__c21*v__c53;
-    const double v__c70 = v__c21*v__c44*v__s4 + v__c39;
-    const double v__c71 = v__c27*(v__c40*v_q2 + v__c69 + v__c70 + v__s0*v_q2) - v__c31*v__c64 + v__c38*v__c66;
-    const double v__c72 = v__c51*v__c63 + v__c55*v__c65;
-    const double v__c73 = v__c60*v__c63 + v__c62*v__c65;
-    const double v__c74 = v__c1 - 6.0;
-    const double v__c75 = v__c50*v__c74;
-    const double v__c76 = -v__c40 + v__s3;
-    const double v__c77 = v__c50*v__c76;
-    const double v__c78 = -v__c17*v__c75 + v__c24*v__c77;
-    const double v__c79 = -v__c24*v__c75 + v__c26*v__c77;
-    const double v__c80 = v__c27*(v__c40*v_q3 - v__c69 + v__c70 + v__s0*v_q3) - v__c31*v__c75 + v__c38*v__c77;
-    const double v__c81 = v__c51*v__c74 + v__c55*v__c76;
-    const double v__c82 = v__c60*v__c74 + v__c62*v__c76;
-    const double v__c83 = v__c10*v_z;
-    const double v__c84 = v__c6*v_z;
-    const double v__c85 = v__c15*v_z + v__c83 + v__c84 + v_z;
-    const double v__c86 = v__c35 + v__c85;
-    const double v__c87 = v__c21*v__c86;
-    const double v__c88 = -4.0*v__c5*v__c87;
-    const double v__c89 = v__c88 + v__s6;
-    const double v__c90 = v__c17*v__c61;
-    const double v__c91 = -v__c35*v__c6 + v__c85;
-    const double v__c92 = v__c21*v__c91;
-    const double v__c93 = 4.0*v__c92;
-    const double v__c94 = v__c5*v__s5 + v__c93;
-    const double v__c95 = v__c17*v__c50;
-    const double v__c96 = v__c89*v__c90 - v__c94*v__c95;
-    const double v__c97 = v__c46*v__c84 + v__c46*v_z;
-    const double v__c98 = -v__c5*v__c54*v__c86 + v__c61*(v__c48 + v__c97);
-    const double v__c99 = v__c50*(-v__c48*v__c6 + v__c97);
-    const double v__c100 = (0.5)*v__c18*v__c20*v__c9*v__c91 - v__c99;
-    const double v__c101 = v__c100*v__c94 + v__c89*v__c98;
-    const double v__c102 = v__c5*v__s10;
-    const double v__c103 = 2.0*v__c5;
-    const double v__c104 = v__c56*v__c83 + v__c56*v_z;
-    const double v__c105 = v__c50*(v__c104 - v__c35*v__c56);
-    const double v__c106 = -v__c105 + (0.5)*v__c18*v__c20*v__c5*v__c91;
-    const double v__c107 = v__c104*v__c61 + v__c50*v__c58*v__c86 - v__c57*v__c87;
-    const double v__c108 = v__c106*v__c94 + v__c107*v__c89 + v__c58*(v__c102 + v__c103*(v_q4*v_q4) + v__c92*v__s11);
-    const double v__c109 = v__c9*v__s12 + v__c93;
-    const double v__c110 = v__c9*v__c93 + v__s6;
-    const double v__c111 = v__c109*v__c95 + v__c110*v__c17*v__c54;
-    const double v__c112 = v__c106*v__c109 + v__c110*(-v__c105*v__c9 + (0.5)*v__c18*v__c20*v__c5*v__c9*v__c91);
-    const double v__c113 = v__c92*v__s13;
-    const double v__c114 = v__c100*v__c109 + v__c110*((0.5)*v__c10*v__c18*v__c20*v__c91 - v__c47*v__c50*v__c91 - v__c9*v__c99) + v__c47*(v__c113 + v__c9*v__s10 + 2.0*v__c9*(v_q5*v_q5));
-    const double v__c115 = v__c88 + v__s14;
-    const double v__c116 = v__c5*v__s12 + v__c93;
-    const double v__c117 = v__c115*v__c90 - v__c116*v__c95;
-    const double v__c118 = v__c100*v__c116 + v__c115*v__c98;
-    const double v__c119 = v__c106*v__c116 + v__c107*v__c115 + v__c58*(v__c102 + v__c103*(v_q6*v_q6) + v__c113);
-    const double v__c120 = (1.0/(v__c3));
-    const double v__c121 = v__c21*v__s3;
-    const double v__c122 = v__c0*v__c121;
-    const double v__c123 = v__c121*v__c24;
-    const double v__c124 = v__c0*v__s1;
-    const double v__c125 = (1.0/(v__c7));
-    const double v__c126 = (1.0/(v__c11));
-    const double v__c127 = (1.0/(v__c13));
+    const double v__c14 = v__c0*v__s1;
+    const double v__c15 = fabs(v__c3);
+    const double v__c16 = (0.5)*v__c2 + 0.5;
+    const double v__c17 = v__c16*v_y;
+    const double v__c18 = (1.0/((v__c6 + 1.0)));
+    const double v__c19 = 2.0*v__c5;
+    const double v__c20 = (1.0/((v__c10 + 1.0)));
+    const double v__c21 = v__c20*v_rb;
+    const double v__c22 = v__c19*v__c21;
+    const double v__c23 = v__c22*v__c9;
+    const double v__c24 = v__c18*v__c23;
+    const double v__c25 = -v__c16*v__c24 + (0.5)*v__c16*v_x;
+    const double v__c26 = 6.0*v_ra;
+    const double v__c27 = 6.0*v__c0;
+    const double v__c28 = (0.5)*v__c0;
+    const double v__c29 = -v__c24 - v__c28*v_y - 0.5*v_x;
+    const double v__c30 = v__c16*(v__c26 + v__c27*v_q1 + v__c29*v__s3 + v__s0*v_q1);
+    const double v__c31 = (0.5)*v__c10 + 0.5;
+    const double v__c32 = v__c18*v__c31;
+    const double v__c33 = v__c22*v__c32;
+    const double v__c34 = -2.0*v__c10*v__c18*v__c20*v__c5*v_rb + v__c33;
+    const double v__c35 = -v__c34;
+    const double v__c36 = v__c0*v__s3;
+    const double v__c37 = 2.0*v__c0*v__c10*v__c18*v__c20*v__c5*v_rb - v__c0*v__c33;
+    const double v__c38 = 2.0*v__c9;
+    const double v__c39 = v__c18*v__c38;
+    const double v__c40 = v__c21*v__c39*v__c6;
+    const double v__c41 = (0.5)*v__c6 + 0.5;
+    const double v__c42 = v__c21*v__c39;
+    const double v__c43 = v__c41*v__c42;
+    const double v__c44 = -v__c40 + v__c43;
+    const double v__c45 = -v__c44;
+    const double v__c46 = 2.0*v__c0*v__c18*v__c20*v__c6*v__c9*v_rb - v__c0*v__c43;
+    const double v__c47 = 3.0*v__c0;
+    const double v__c48 = v__c1 + 6.0;
+    const double v__c49 = v__c28*v__c48 + v__c47;
+    const double v__c50 = v__c0*v__s4;
+    const double v__c51 = v__c27 + v__s2;
+    const double v__c52 = v__c28*v__c51;
+    const double v__c53 = v__c35*v__c48 + v__c37*v__c51;
+    const double v__c54 = v__c45*v__c48 + v__c46*v__c51;
+    const double v__c55 = (0.5)*v__c17;
+    const double v__c56 = 3.0*v_y;
+    const double v__c57 = v__c47*v_x;
+    const double v__c58 = v__c18*v__c21;
+    const double v__c59 = v__c58*v__c9;
+    const double v__c60 = v__c5*v__c59;
+    const double v__c61 = 12.0*v__c0*v__c60;
+    const double v__c62 = v__c26 + v__c29*v__s0;
+    const double v__c63 = v__c16*(v__c27*v_q2 - v__c56 + v__c57 - v__c61 + v__c62 + v__s0*v_q2) + v__c25*v__c51 - v__c48*v__c55;
+    const double v__c64 = v__c1 - 6.0;
+    const double v__c65 = v__c28*v__c64;
+    const double v__c66 = -v__c27 + v__s2;
+    const double v__c67 = v__c28*v__c66 + 3.0;
+    const double v__c68 = v__c35*v__c64 + v__c37*v__c66;
+    const double v__c69 = v__c45*v__c64 + v__c46*v__c66;
+    const double v__c70 = v__c16*(v__c27*v_q3 + v__c56 - v__c57 + v__c61 + v__c62 + v__s0*v_q3) + v__c25*v__c66 - v__c55*v__c64;
+    const double v__c71 = v__c5*v__s12;
+    const double v__c72 = 4.0*v_z;
+    const double v__c73 = v__c5*v__c72 + 16.0*v__c60;
+    const double v__c74 = -v__c73 + v__s7;
+    const double v__c75 = (0.5)*v__c5;
+    const double v__c76 = v__c74*v__c75;
+    const double v__c77 = 2.0*v_z;
+    const double v__c78 = 8.0*v__c59*v__c6;
+    const double v__c79 = -v__c77 + v__c78;
+    const double v__c80 = 16.0*v__c6;
+    const double v__c81 = -v__c59*v__c80 + v__c72;
+    const double v__c82 = v__c5*v__s6 + v__c81;
+    const double v__c83 = 2.0*v__c6;
+    const double v__c84 = v__c10*v__c58;
+    const double v__c85 = v__c21*v__c32*v__c83 - v__c83*v__c84;
+    const double v__c86 = v__c34*v__c74 + v__c82*v__c85;
+    const double v__c87 = v__c5*v__s11;
+    const double v__c88 = (0.5)*v_z;
+    const double v__c89 = v__c40 - v__c88;
+    const double v__c90 = (v__c5*v__c5*v__c5);
+    const double v__c91 = v__c23 - v__c42*v__c90;
+    const double v__c92 = v__c41*v__c88 + v__c44;
+    const double v__c93 = v__c41*(v__c19*(v_q4*v_q4) + v__c87 + v__c89*v__s6) + v__c74*v__c92 + v__c82*v__c91;
+    const double v__c94 = v__c72*v__c9 - v__c80*v__c84 + v__s7;
+    const double v__c95 = (0.5)*v__c9*v__c94;
+    const double v__c96 = v__c81 + v__c9*v__s13;
+    const double v__c97 = v__c91*v__c96 + v__c94*(v__c10*v__c22 - 2.0*v__c84*v__c90);
+    const double v__c98 = v__c89*v__s13;
+    const double v__c99 = v__c31*(v__c38*(v_q5*v_q5) + v__c9*v__s11 + v__c98) + v__c85*v__c96 + v__c94*(2.0*v__c18*v__c6*v__c9*v_rb - v__c31*v__c88 - v__c58*v__c83*(v__c9*v__c9*v__c9));
+    const double v__c100 = v__c5*v__s14;
+    const double v__c101 = -v__c73 + v__s15;
+    const double v__c102 = v__c101*v__c75;
+    const double v__c103 = v__c5*v__s13 + v__c81;
+    const double v__c104 = v__c101*v__c34 + v__c103*v__c85;
+    const double v__c105 = v__c101*v__c92 + v__c103*v__c91 + v__c41*(v__c19*(v_q6*v_q6) + v__c87 + v__c98);
+    const double v__c106 = (1.0/(v__c3));
+    const double v__c107 = (1.0/(v__c7));
+    const double v__c108 = v__c77 - v__c78;
+    const double v__c109 = (1.0/(v__c11));
+    const double v__c110 = (1.0/(v__c13));
     out[0] = v__c3;
     out[1] = v__c3;
     out[2] = v__c3;
     out[3] = v__c7;
     out[4] = v__c11;
     out[5] = v__c13;
-    out[6] = v__c14 + fabs(v__c17*v__c22 + v__c24*v__c25) + fabs(v__c22*v__c24 + v__c25*v__c26) + fabs(v__c51*v__c52 + v__c55*v__s1) + fabs(v__c52*v__c60 + v__c62*v__s1) + fabs(v__c22*v__c31 + v__c25*v__c38 + v__c45);
-    out[7] = v__c14 + fabs(v__c67) + fabs(v__c68) + fabs(v__c71) + fabs(v__c72) + fabs(v__c73);
-    out[8] = v__c14 + fabs(v__c78) + fabs(v__c79) + fabs(v__c80) + fabs(v__c81) + fabs(v__c82);
-    out[9] = fabs(v__c101) + fabs(v__c108) + fabs(v__c7) + fabs(v__c96);
-    out[10] = fabs(v__c11) + fabs(v__c111) + fabs(v__c112) + fabs(v__c114);
-    out[11] = fabs(v__c117) + fabs(v__c118) + fabs(v__c119) + fabs(v__c13);
-    out[12] = v__c120*(v__c122*v__c17 + v__c123);
-    out[13] = v__c120*(v__c0*v__c123 + v__c121*v__c26);
+    out[6] = v__c15 + fabs(v__c14) + fabs(v__c2*v__s0 + v__s2) + fabs(v__c35*v__c36 + v__c37*v__s1) + fabs(v__c36*v__c45 + v__c46*v__s1) + fabs(v__c1*v__c17 + v__c25*v__s1 + v__c30);
+    out[7] = v__c15 + fabs(v__c53) + fabs(v__c54) + fabs(v__c63) + fabs(v__c49 - v__s5) + fabs(v__c50 + v__c52 - 3.0);
+    out[8] = v__c15 + fabs(v__c68) + fabs(v__c69) + fabs(v__c70) + fabs(v__c50 + v__c67) + fabs(v__c47 - v__c65 + v__s5);
+    out[9] = fabs(v__c7) + fabs(v__c86) + fabs(v__c93) + fabs(v__c71 + v__c76 + v__c79);
+    out[10] = fabs(v__c11) + fabs(v__c97) + fabs(v__c99) + fabs(v__c79 + v__c9*v__s14 - v__c95);
+    out[11] = fabs(v__c104) + fabs(v__c105) + fabs(v__c13) + fabs(v__c100 + v__c102 + v__c79);
+    out[12] = v__c106*v__c36;
+    out[13] = v__c106*(v__c2*v__s2 + v__s0);
     out[14] = 0.0;
-    out[15] = v__c120*(v__c124*v__c51 + v__c55*v__s2);
-    out[16] = v__c120*(v__c124*v__c60 + v__c62*v__s2);
-    out[17] = v__c120*(v__c121*v__c38 + v__c122*v__c31 - v__c45);
-    out[18] = -v__c120*v__c67;
-    out[19] = -v__c120*v__c68;
+    out[15] = v__c106*(v__c14*v__c35 + v__c37*v__s3);
+    out[16] = v__c106*(v__c14*v__c45 + v__c46*v__s3);
+    out[17] = v__c106*(v__c0*v__c17*v__s2 + v__c25*v__s3 - v__c30);
+    out[18] = v__c106*(v__c0*v__s5 - v__c52 + 3.0);
+    out[19] = v__c106*(v__c49 + v__s4);
     out[20] = 0.0;
-    out[21] = -v__c120*v__c72;
-    out[22] = -v__c120*v__c73;
-    out[23] = -v__c120*v__c71;
-    out[24] = -v__c120*v__c78;
-    out[25] = -v__c120*v__c79;
+    out[21] = -v__c106*v__c53;
+    out[22] = -v__c106*v__c54;
+    out[23] = -v__c106*v__c63;
+    out[24] = v__c106*(v__c0*v__s5 - v__c67);
+    out[25] = v__c106*(-v__c47 + v__c65 + v__s4);
     out[26] = 0.0;
-    out[27] = -v__c120*v__c81;
-    out[28] = -v__c120*v__c82;
-    out[29] = -v__c120*v__c80;
+    out[27] = -v__c106*v__c68;
+    out[28] = -v__c106*v__c69;
+    out[29] = -v__c106*v__c70;
     out[30] = 0.0;
     out[31] = 0.0;
-    out[32] = -v__c125*v__c96;
-    out[33] = -v__c101*v__c125;
-    out[34] = -v__c108*v__c125;
+    out[32] = v__c107*(v__c100 + v__c108 - v__c76);
+    out[33] = -v__c107*v__c86;
+    out[34] = -v__c107*v__c93;
     out[35] = 0.0;
     out[36] = 0.0;
     out[37] = 0.0;
-    out[38] = v__c111*v__c126;
-    out[39] = -v__c114*v__c126;
-    out[40] = -v__c112*v__c126;
+    out[38] = v__c109*(v__c108 + v__c9*v__s12 + v__c95);
+    out[39] = -v__c109*v__c99;
+    out[40] = -v__c109*v__c97;
     out[41] = 0.0;
     out[42] = 0.0;
     out[43] = 0.0;
-    out[44] = -v__c117*v__c127;
-    out[45] = -v__c118*v__c127;
-    out[46] = -v__c119*v__c127;
+    out[44] = v__c110*(-v__c102 + v__c108 + v__c71);
+    out[45] = -v__c104*v__c110;
+    out[46] = -v__c105*v__c110;
     out[47] = 0.0;
 }
 
@@ -641,4 +618,65 @@ void bonered_solve(long n, const double *pose, const double *par_in, int mode,
         solve_block(m, pose + lo * 6, par, mode, limits, q + lo * 6,
                     status + lo, jac ? jac + lo * 36 : 0);
     }
+}
+
+/* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
+ * lo[a] + step[a] * i on pose coordinate coord[a], the others are fixed[]; modes[]:
+ * the working modes tried, in order.  Adds to count (returned), axis_lo/axis_hi
+ * (running extremes of the reached samples), reasons[code] and, where packed is not
+ * NULL, sets bit 7 - j % 8 of packed[j / 8] for each reached sample j - start. */
+long bonered_scan(long start, long stop, int naxes, const long *shape,
+                  const double *lo, const double *step, const int *coord,
+                  const double *fixed, int nmodes, const int *modes,
+                  const double *par_in, double *axis_lo, double *axis_hi,
+                  long *reasons, unsigned char *packed)
+{
+    double par[2];
+    for (int k = 0; k < 2; k++)
+        par[k] = par_in[k];
+    double pose[BF_BLOCK * 6], q[BF_BLOCK * 6];
+    signed char st[BF_BLOCK];
+    int code[BF_BLOCK];
+    long idx[6];
+    long rest = start;
+    for (int a = naxes - 1; a >= 0; a--) {
+        idx[a] = rest % shape[a];
+        rest /= shape[a];
+    }
+    long count = 0;
+    for (long b = start; b < stop; b += BF_BLOCK) {
+        int m = stop - b < BF_BLOCK ? (int)(stop - b) : BF_BLOCK;
+        for (int i = 0; i < m; i++) {
+            for (int k = 0; k < 6; k++)
+                pose[i * 6 + k] = fixed[k];
+            for (int a = 0; a < naxes; a++)
+                pose[i * 6 + coord[a]] = lo[a] + step[a] * (double)idx[a];
+            for (int a = naxes - 1; a >= 0; a--) {  /* the next sample, C order */
+                if (++idx[a] < shape[a])
+                    break;
+                idx[a] = 0;
+            }
+        }
+        for (int k = 0; k < nmodes; k++) {
+            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            for (int i = 0; i < m; i++)
+                code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
+        }
+        for (int i = 0; i < m; i++) {
+            reasons[code[i]] += 1;
+            if (code[i] != 0)
+                continue;
+            count++;
+            for (int a = 0; a < naxes; a++) {
+                double v = pose[i * 6 + coord[a]];
+                axis_lo[a] = v < axis_lo[a] ? v : axis_lo[a];
+                axis_hi[a] = v > axis_hi[a] ? v : axis_hi[a];
+            }
+            if (packed) {
+                long j = b - start + i;
+                packed[j >> 3] |= (unsigned char)(0x80u >> (j & 7));
+            }
+        }
+    }
+    return count;
 }

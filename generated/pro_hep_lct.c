@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5cb7ae4d3bdddc43b2adff11e272c5d89134008c5ff27ca17fd8d8c8c93a644a
+ * Derivation hash: 6fddffe280c7d7432d25b0974e4f2ed3d3b71109da07c685999096b640720ba1
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "5cb7ae4d3bdddc43b2adff11e272c5d89134008c5ff27ca17fd8d8c8c93a644a";
-int bonered_abi(void) { return 1; }
+const char bonered_derivation_hash[] = "6fddffe280c7d7432d25b0974e4f2ed3d3b71109da07c685999096b640720ba1";
+int bonered_abi(void) { return 2; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
 BF_INLINE void _study(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
@@ -252,4 +252,65 @@ void bonered_solve(long n, const double *pose, const double *par_in, int mode,
         solve_block(m, pose + lo * 4, par, mode, limits, q + lo * 4,
                     status + lo, jac ? jac + lo * 16 : 0);
     }
+}
+
+/* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
+ * lo[a] + step[a] * i on pose coordinate coord[a], the others are fixed[]; modes[]:
+ * the working modes tried, in order.  Adds to count (returned), axis_lo/axis_hi
+ * (running extremes of the reached samples), reasons[code] and, where packed is not
+ * NULL, sets bit 7 - j % 8 of packed[j / 8] for each reached sample j - start. */
+long bonered_scan(long start, long stop, int naxes, const long *shape,
+                  const double *lo, const double *step, const int *coord,
+                  const double *fixed, int nmodes, const int *modes,
+                  const double *par_in, double *axis_lo, double *axis_hi,
+                  long *reasons, unsigned char *packed)
+{
+    double par[11];
+    for (int k = 0; k < 11; k++)
+        par[k] = par_in[k];
+    double pose[BF_BLOCK * 4], q[BF_BLOCK * 4];
+    signed char st[BF_BLOCK];
+    int code[BF_BLOCK];
+    long idx[4];
+    long rest = start;
+    for (int a = naxes - 1; a >= 0; a--) {
+        idx[a] = rest % shape[a];
+        rest /= shape[a];
+    }
+    long count = 0;
+    for (long b = start; b < stop; b += BF_BLOCK) {
+        int m = stop - b < BF_BLOCK ? (int)(stop - b) : BF_BLOCK;
+        for (int i = 0; i < m; i++) {
+            for (int k = 0; k < 4; k++)
+                pose[i * 4 + k] = fixed[k];
+            for (int a = 0; a < naxes; a++)
+                pose[i * 4 + coord[a]] = lo[a] + step[a] * (double)idx[a];
+            for (int a = naxes - 1; a >= 0; a--) {  /* the next sample, C order */
+                if (++idx[a] < shape[a])
+                    break;
+                idx[a] = 0;
+            }
+        }
+        for (int k = 0; k < nmodes; k++) {
+            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            for (int i = 0; i < m; i++)
+                code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
+        }
+        for (int i = 0; i < m; i++) {
+            reasons[code[i]] += 1;
+            if (code[i] != 0)
+                continue;
+            count++;
+            for (int a = 0; a < naxes; a++) {
+                double v = pose[i * 4 + coord[a]];
+                axis_lo[a] = v < axis_lo[a] ? v : axis_lo[a];
+                axis_hi[a] = v > axis_hi[a] ? v : axis_hi[a];
+            }
+            if (packed) {
+                long j = b - start + i;
+                packed[j >> 3] |= (unsigned char)(0x80u >> (j & 7));
+            }
+        }
+    }
+    return count;
 }

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c9389d391fc36b27331bc103d1e17a005e3df59ac167e889683bf85cb15bfb72
+ * Derivation hash: 386d0fed27e2430ef8547317d639af24d165decbe186691207789f87c97310e2
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c9389d391fc36b27331bc103d1e17a005e3df59ac167e889683bf85cb15bfb72";
-int bonered_abi(void) { return 1; }
+const char bonered_derivation_hash[] = "386d0fed27e2430ef8547317d639af24d165decbe186691207789f87c97310e2";
+int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */
 BF_INLINE void _shared(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
@@ -25,20 +25,19 @@ BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, doub
     const double v__c1 = v__f1;
     const double v__c2 = v__f2;
     const double v__c3 = v__c1*v__c2;
-    const double v__c4 = v__c0*v__c3;
-    const double v__c5 = (1.0/((v__c4 + 1.0)));
-    const double v__c6 = v__c0*v__c2;
-    const double v__c7 = v__c0*v__c1;
-    const double v__c8 = (0.5)*v_x;
-    const double v__c9 = (0.5)*v_y;
-    const double v__c10 = (0.5)*v_z;
-    out[0] = v__c5*(v__c0 - v__c3);
-    out[1] = v__c5*(v__c1 + v__c6);
-    out[2] = v__c5*(v__c2 - v__c7);
-    out[3] = v__c5*(v__c0*v__c8 + v__c1*v__c9 + v__c10*v__c2 - v__c10*v__c7 - v__c3*v__c8 + v__c6*v__c9);
-    out[4] = v__c5*((0.5)*v__c0*v__c1*v_y + (0.5)*v__c0*v__c2*v_z + (0.5)*v__c1*v_z - v__c2*v__c9 - v__c4*v__c8 - v__c8);
-    out[5] = v__c5*(-v__c0*v__c10 + (0.5)*v__c1*v__c2*v_z + (0.5)*v__c2*v_x - v__c4*v__c9 - v__c7*v__c8 - v__c9);
-    out[6] = v__c5*((0.5)*v__c0*v_y - v__c1*v__c8 - v__c10*v__c4 - v__c10 - v__c3*v__c9 - v__c6*v__c8);
+    const double v__c4 = (1.0/((v__c0*v__c3 + 1.0)));
+    const double v__c5 = v__c0*v__c2;
+    const double v__c6 = v__c0*v__c1;
+    const double v__c7 = v__c0*v_x;
+    const double v__c8 = (0.5)*v__c4;
+    const double v__c9 = v__c0*v_z;
+    out[0] = v__c4*(v__c0 - v__c3);
+    out[1] = v__c4*(v__c1 + v__c5);
+    out[2] = v__c4*(v__c2 - v__c6);
+    out[3] = v__c8*(v__c1*v_y + v__c2*v_z - v__c3*v_x + v__c5*v_y - v__c6*v_z + v__c7);
+    out[4] = v__c8*(v__c0*v__c1*v_y + v__c0*v__c2*v_z + v__c1*v_z - v__c2*v_y - v__c3*v__c7 - v_x);
+    out[5] = v__c8*(-v__c0*v__c3*v_y + v__c1*v__c2*v_z + v__c2*v_x - v__c6*v_x - v__c9 - v_y);
+    out[6] = v__c8*(v__c0*v_y - v__c1*v_x - v__c3*v__c9 - v__c3*v_y - v__c5*v_x - v_z);
 }
 
 /* Coefficients (A, B, C) of the generator solved for q2 (from P/L2). */
@@ -1086,4 +1085,65 @@ void bonered_solve(long n, const double *pose, const double *par_in, int mode,
         solve_block(m, pose + lo * 6, par, mode, limits, q + lo * 6,
                     status + lo, jac ? jac + lo * 36 : 0);
     }
+}
+
+/* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
+ * lo[a] + step[a] * i on pose coordinate coord[a], the others are fixed[]; modes[]:
+ * the working modes tried, in order.  Adds to count (returned), axis_lo/axis_hi
+ * (running extremes of the reached samples), reasons[code] and, where packed is not
+ * NULL, sets bit 7 - j % 8 of packed[j / 8] for each reached sample j - start. */
+long bonered_scan(long start, long stop, int naxes, const long *shape,
+                  const double *lo, const double *step, const int *coord,
+                  const double *fixed, int nmodes, const int *modes,
+                  const double *par_in, double *axis_lo, double *axis_hi,
+                  long *reasons, unsigned char *packed)
+{
+    double par[4];
+    for (int k = 0; k < 4; k++)
+        par[k] = par_in[k];
+    double pose[BF_BLOCK * 6], q[BF_BLOCK * 6];
+    signed char st[BF_BLOCK];
+    int code[BF_BLOCK];
+    long idx[6];
+    long rest = start;
+    for (int a = naxes - 1; a >= 0; a--) {
+        idx[a] = rest % shape[a];
+        rest /= shape[a];
+    }
+    long count = 0;
+    for (long b = start; b < stop; b += BF_BLOCK) {
+        int m = stop - b < BF_BLOCK ? (int)(stop - b) : BF_BLOCK;
+        for (int i = 0; i < m; i++) {
+            for (int k = 0; k < 6; k++)
+                pose[i * 6 + k] = fixed[k];
+            for (int a = 0; a < naxes; a++)
+                pose[i * 6 + coord[a]] = lo[a] + step[a] * (double)idx[a];
+            for (int a = naxes - 1; a >= 0; a--) {  /* the next sample, C order */
+                if (++idx[a] < shape[a])
+                    break;
+                idx[a] = 0;
+            }
+        }
+        for (int k = 0; k < nmodes; k++) {
+            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            for (int i = 0; i < m; i++)
+                code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
+        }
+        for (int i = 0; i < m; i++) {
+            reasons[code[i]] += 1;
+            if (code[i] != 0)
+                continue;
+            count++;
+            for (int a = 0; a < naxes; a++) {
+                double v = pose[i * 6 + coord[a]];
+                axis_lo[a] = v < axis_lo[a] ? v : axis_lo[a];
+                axis_hi[a] = v > axis_hi[a] ? v : axis_hi[a];
+            }
+            if (packed) {
+                long j = b - start + i;
+                packed[j >> 3] |= (unsigned char)(0x80u >> (j & 7));
+            }
+        }
+    }
+    return count;
 }

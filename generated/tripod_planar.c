@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: abbec8481d1915ad6770aed90815deaca5ca3ed51f896fee12ca656a896a7421
+ * Derivation hash: f4d88a21bae36dc5f18c8697baa29b8c3bd40ce167d2ed0dfe78b2ae2e917e05
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "abbec8481d1915ad6770aed90815deaca5ca3ed51f896fee12ca656a896a7421";
-int bonered_abi(void) { return 1; }
+const char bonered_derivation_hash[] = "f4d88a21bae36dc5f18c8697baa29b8c3bd40ce167d2ed0dfe78b2ae2e917e05";
+int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */
 BF_INLINE void _shared(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_d, double *restrict out)
@@ -1100,4 +1100,65 @@ void bonered_solve(long n, const double *pose, const double *par_in, int mode,
         solve_block(m, pose + lo * 6, par, mode, limits, q + lo * 6,
                     status + lo, jac ? jac + lo * 36 : 0);
     }
+}
+
+/* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
+ * lo[a] + step[a] * i on pose coordinate coord[a], the others are fixed[]; modes[]:
+ * the working modes tried, in order.  Adds to count (returned), axis_lo/axis_hi
+ * (running extremes of the reached samples), reasons[code] and, where packed is not
+ * NULL, sets bit 7 - j % 8 of packed[j / 8] for each reached sample j - start. */
+long bonered_scan(long start, long stop, int naxes, const long *shape,
+                  const double *lo, const double *step, const int *coord,
+                  const double *fixed, int nmodes, const int *modes,
+                  const double *par_in, double *axis_lo, double *axis_hi,
+                  long *reasons, unsigned char *packed)
+{
+    double par[3];
+    for (int k = 0; k < 3; k++)
+        par[k] = par_in[k];
+    double pose[BF_BLOCK * 6], q[BF_BLOCK * 6];
+    signed char st[BF_BLOCK];
+    int code[BF_BLOCK];
+    long idx[6];
+    long rest = start;
+    for (int a = naxes - 1; a >= 0; a--) {
+        idx[a] = rest % shape[a];
+        rest /= shape[a];
+    }
+    long count = 0;
+    for (long b = start; b < stop; b += BF_BLOCK) {
+        int m = stop - b < BF_BLOCK ? (int)(stop - b) : BF_BLOCK;
+        for (int i = 0; i < m; i++) {
+            for (int k = 0; k < 6; k++)
+                pose[i * 6 + k] = fixed[k];
+            for (int a = 0; a < naxes; a++)
+                pose[i * 6 + coord[a]] = lo[a] + step[a] * (double)idx[a];
+            for (int a = naxes - 1; a >= 0; a--) {  /* the next sample, C order */
+                if (++idx[a] < shape[a])
+                    break;
+                idx[a] = 0;
+            }
+        }
+        for (int k = 0; k < nmodes; k++) {
+            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            for (int i = 0; i < m; i++)
+                code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
+        }
+        for (int i = 0; i < m; i++) {
+            reasons[code[i]] += 1;
+            if (code[i] != 0)
+                continue;
+            count++;
+            for (int a = 0; a < naxes; a++) {
+                double v = pose[i * 6 + coord[a]];
+                axis_lo[a] = v < axis_lo[a] ? v : axis_lo[a];
+                axis_hi[a] = v > axis_hi[a] ? v : axis_hi[a];
+            }
+            if (packed) {
+                long j = b - start + i;
+                packed[j >> 3] |= (unsigned char)(0x80u >> (j & 7));
+            }
+        }
+    }
+    return count;
 }

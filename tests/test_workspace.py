@@ -506,3 +506,45 @@ def test_scan_threads_run_every_chunk_once_and_raise_the_first_error(monkeypatch
     assert seen[-1] == (37, 37) and [d for d, _ in seen] == list(range(1, 38))
     with pytest.raises(RuntimeError, match="chunk 5 failed"):
         scan_module._run_threads([(k, 5) for k in range(37)], 2, None)
+
+
+def _grid_around_home(module, n=(13, 11, 9)):
+    """A grid over three pose coordinates through the module's home pose (the others fixed
+    there), wide enough to hold reached and unreached samples."""
+    home = dict(zip(module.POSE, module.HOME))
+    axes = []
+    for name, k in zip(module.POSE[:3], n):
+        span = 60.0 if name not in ("alpha", "beta", "gamma") else 0.6
+        axes.append(Axis(name, home[name] - span, home[name] + span, k))
+    fixed = {p: v for p, v in home.items() if p not in module.POSE[:3]}
+    return Grid(tuple(module.POSE), tuple(axes), fixed)
+
+
+@pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar", "stewart", "urrh_rcm",
+                                  "lamina_milling"])
+def test_compiled_scan_chunk_is_the_reduction_of_classify(name, monkeypatch):
+    """scan_chunk's one compiled call (bonered_scan: the grid's samples, every allowed mode,
+    the counts, extremes, reasons and mask) against the same chunk classified and reduced in
+    numpy around the module's IK: equal field by field, for chunks that start and stop
+    anywhere and for one and two working modes."""
+    import importlib
+
+    from bonered_alg.workspace import scan as scan_module
+    from bonered_alg.workspace.membership import Criteria
+
+    m = importlib.import_module(f"bonered_alg.generated.{name}")
+    if m._MODEL.fast is None or m._MODEL.fast.library() is None:
+        pytest.skip("no C compiler")
+    g = _grid_around_home(m)
+    for criteria in (Criteria(), Criteria(modes=(1, 0))):
+        assert scan_module.compiled_scan(m, criteria, {}) is not None
+        for a, b in ((0, g.size), (5, 203), (64, 128), (g.size - 77, g.size)):
+            fast = scan_module.scan_chunk(name, g, a, b, criteria, {}, True)
+            with monkeypatch.context() as mp:
+                mp.setattr(scan_module, "compiled_scan", lambda *args: None)
+                ref = scan_module.scan_chunk(name, g, a, b, criteria, {}, True)
+            assert fast == ref, (name, criteria, a, b)
+    whole = scan(name, g, workers=1)
+    assert 0 < whole.count < g.size and sum(whole.reasons.values()) == g.size
+    # custom limits or a singularity margin: classify in numpy around the IK
+    assert scan_module.compiled_scan(m, Criteria(min_margin=1e-3), {}) is None

@@ -19,7 +19,7 @@ import sympy as sp
 from .kernels import Kernel, c_function, c_values, shareable_functions
 
 # the C entry point's contract with bonered_alg.runtime.compiled
-C_ABI = 1
+C_ABI = 2
 
 
 def _c_float(value: float) -> str:
@@ -243,8 +243,82 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         f"                    status + lo, jac ? jac + lo * {nj_entries} : 0);",
         "    }",
         "}",
+        "",
+        *_scan_entry(npose, nj, npar),
     ]
     if jac.outputs != 2 * nj + nj_entries:
         raise ValueError(f"{name}: the Jacobian kernel has {jac.outputs} outputs, expected "
                          f"{2 * nj + nj_entries}")
     return "\n".join(lines + body) + "\n"
+
+
+def _scan_entry(npose: int, nj: int, npar: int) -> list[str]:
+    """``bonered_scan``: the samples ``[start, stop)`` of a workspace grid classified as
+    :func:`bonered_alg.workspace.membership.classify` does with the module's own limits and
+    no singularity margin (each allowed working mode in turn, a sample reached as soon as
+    one mode gives OK, else the last mode's status), and reduced as
+    :func:`bonered_alg.workspace.scan.scan_chunk` does: the count of reached samples, each
+    axis's extremes over them, a histogram of the codes and the bit-packed mask; one call
+    per chunk, so that a scan's threads hold no lock while they work."""
+    return [
+        "/* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values",
+        " * lo[a] + step[a] * i on pose coordinate coord[a], the others are fixed[]; modes[]:",
+        " * the working modes tried, in order.  Adds to count (returned), axis_lo/axis_hi",
+        " * (running extremes of the reached samples), reasons[code] and, where packed is not",
+        " * NULL, sets bit 7 - j % 8 of packed[j / 8] for each reached sample j - start. */",
+        "long bonered_scan(long start, long stop, int naxes, const long *shape,",
+        "                  const double *lo, const double *step, const int *coord,",
+        "                  const double *fixed, int nmodes, const int *modes,",
+        "                  const double *par_in, double *axis_lo, double *axis_hi,",
+        "                  long *reasons, unsigned char *packed)",
+        "{",
+        f"    double par[{max(npar, 1)}];",
+        f"    for (int k = 0; k < {npar}; k++)",
+        "        par[k] = par_in[k];",
+        f"    double pose[BF_BLOCK * {npose}], q[BF_BLOCK * {nj}];",
+        "    signed char st[BF_BLOCK];",
+        "    int code[BF_BLOCK];",
+        f"    long idx[{npose}];",
+        "    long rest = start;",
+        "    for (int a = naxes - 1; a >= 0; a--) {",
+        "        idx[a] = rest % shape[a];",
+        "        rest /= shape[a];",
+        "    }",
+        "    long count = 0;",
+        "    for (long b = start; b < stop; b += BF_BLOCK) {",
+        "        int m = stop - b < BF_BLOCK ? (int)(stop - b) : BF_BLOCK;",
+        "        for (int i = 0; i < m; i++) {",
+        f"            for (int k = 0; k < {npose}; k++)",
+        f"                pose[i * {npose} + k] = fixed[k];",
+        "            for (int a = 0; a < naxes; a++)",
+        f"                pose[i * {npose} + coord[a]] = lo[a] + step[a] * (double)idx[a];",
+        "            for (int a = naxes - 1; a >= 0; a--) {  /* the next sample, C order */",
+        "                if (++idx[a] < shape[a])",
+        "                    break;",
+        "                idx[a] = 0;",
+        "            }",
+        "        }",
+        "        for (int k = 0; k < nmodes; k++) {",
+        "            solve_block(m, pose, par, modes[k], 1, q, st, 0);",
+        "            for (int i = 0; i < m; i++)",
+        "                code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];",
+        "        }",
+        "        for (int i = 0; i < m; i++) {",
+        "            reasons[code[i]] += 1;",
+        "            if (code[i] != 0)",
+        "                continue;",
+        "            count++;",
+        "            for (int a = 0; a < naxes; a++) {",
+        f"                double v = pose[i * {npose} + coord[a]];",
+        "                axis_lo[a] = v < axis_lo[a] ? v : axis_lo[a];",
+        "                axis_hi[a] = v > axis_hi[a] ? v : axis_hi[a];",
+        "            }",
+        "            if (packed) {",
+        "                long j = b - start + i;",
+        "                packed[j >> 3] |= (unsigned char)(0x80u >> (j & 7));",
+        "            }",
+        "        }",
+        "    }",
+        "    return count;",
+        "}",
+    ]

@@ -18,7 +18,7 @@ from ..kinematics.ik_plan import IKStep
 from ..kinematics.rps_forward import DEGREE_BOUND, RPSSystem
 from ..solvers.closures import RPSEliminant
 from .c_module import c_module
-from .kernels import Kernel, kernel
+from .kernels import Kernel, kernel, leaner_outputs
 from .template import render
 
 
@@ -246,7 +246,10 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     study = list(sub)
     # the pose is converted to Study coordinates once per call; the IK steps are polynomial
     # in those coordinates
-    kernels = [kernel("_study", [*spec.pose, *par], [sub[y] for y in study],
+    # the pose map in its leanest form (polynomial part plus proper fraction where that
+    # is smaller), for the Study map's kernel and the Jacobian's chain rule alike
+    lean = dict(zip(study, leaner_outputs([sub[y] for y in study], [*spec.pose, *par], par)))
+    kernels = [kernel("_study", [*spec.pose, *par], [lean[y] for y in study],
                       "Study coordinates STUDY_POSE of the pose (POSE).", c=True,
                       scalars=par)]
     step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {},
@@ -282,7 +285,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     g_pose = [g.subs(sub) for g in gens]
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
     jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
-    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, sub, compact)
+    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, lean, compact)
     # pivots of linear steps that can vanish (a constant pivot never does)
     linear = [k for k, st in enumerate(spec.steps)
               if st.degree == 1 and not sp.diff(gens[k], st.joint).is_number]

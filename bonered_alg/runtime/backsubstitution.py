@@ -26,6 +26,117 @@ def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False,
                    per_step=None):
     """Solve ``steps`` in order (linear or quadratic in one unknown each); NaN on failure.
 
+    The per-step record (``per_step``) comes from :func:`backsubstitute_detailed`; without
+    it, :func:`backsubstitute_lean` gives the same roots, NaN and status codes with fewer
+    array operations."""
+    if per_step is not None:
+        return backsubstitute_detailed(inputs, steps, indices, n_out, mode, par, with_status,
+                                       per_step)
+    return backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status)
+
+
+def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=False):
+    """:func:`backsubstitute_detailed` without the per-step record, in fewer operations.
+
+    The status is the code of the first step that fails (earlier steps are then all valid,
+    so its code does not depend on the NaN the detailed form passes on), else ON_BOUNDARY
+    where some step has a double root, else OK; INVALID_INPUT where an input is not finite.
+    It is computed on the poses where something happened only.  A quadratic step whose
+    ``B`` is the constant 0 (``A q^2 + C``, a distance leg) takes its root as
+    ``+-sqrt(-4 A C) / (2 A)``, the general rule's value: with ``B = 0`` its tolerance
+    ``DISC_RTOL B^2`` is 0, so a negative discriminant (NaN root) is exactly no real root.
+    """
+    shape = inputs.shape[:-1]
+    cols = contiguous_columns(inputs)
+    out = numpy.empty((n_out,) + shape)
+    solved, bads, records = [], [], []
+    with numpy.errstate(all="ignore"):
+        for (degree, kern, bit), index in zip(steps, indices):
+            a, b, c = kern(*cols, *solved, *par)
+            if degree == 1:
+                root = -c / b
+                bad = ~numpy.isfinite(root)
+                record = ("linear", b)
+            elif numpy.ndim(b) == 0 and b == 0.0:
+                disc = 0.0 - 4.0 * a * c
+                ssq = numpy.sqrt(disc)  # NaN where disc < 0: no real root
+                root = (-ssq if (mode >> bit) & 1 else ssq) / (2.0 * a)
+                bad = ~numpy.isfinite(root)
+                record = ("pure", disc)
+            else:
+                minus = (mode >> bit) & 1  # the root with -sqrt(disc)
+                bb = b * b
+                disc = bb - 4.0 * a * c
+                ssq = numpy.sqrt(numpy.maximum(disc, 0.0))
+                if minus:  # sign * sqrt and sign * b <= 0 without multiplying by the sign
+                    ssq = -ssq
+                near = (b >= 0.0) if minus else (b <= 0.0)
+                root = numpy.where(near, (ssq - b) / (2.0 * a), (2.0 * c) / (-b - ssq))
+                bad = ~numpy.isfinite(root)
+                bad |= disc < -DISC_RTOL * bb
+                record = ("quadratic", disc, bb)
+            out[index, ...] = root
+            solved.append(root)
+            bads.append(bad)
+            if with_status:
+                records.append(record)
+        failed = numpy.zeros(shape, dtype=bool)
+        for bad in bads:
+            failed |= bad
+        if failed.any():
+            out[:, failed] = numpy.nan
+        status = None
+        if with_status:
+            status = _lean_status(inputs, shape, failed, bads, records)
+    return numpy.moveaxis(out, 0, -1), status
+
+
+def _lean_status(inputs, shape, failed, bads, records):
+    """The status codes of :func:`backsubstitute_lean` (its docstring says the rule)."""
+
+    def flat(v):
+        return numpy.reshape(numpy.broadcast_to(v, shape), -1)
+
+    invalid = flat(~numpy.all(numpy.isfinite(inputs), axis=-1))
+    special = flat(failed) | invalid
+    for kind, *arrays in records:
+        if kind == "pure":
+            special |= flat(arrays[0] == 0.0)
+        elif kind == "quadratic":
+            special |= flat(numpy.abs(arrays[0]) <= DISC_RTOL * arrays[1])
+    status = numpy.zeros(special.shape, dtype=numpy.int8)
+    if special.any():
+        idx = numpy.flatnonzero(special)
+        codes = numpy.zeros(len(idx), dtype=numpy.int8)
+        decided = numpy.zeros(len(idx), dtype=bool)
+        boundary = numpy.zeros(len(idx), dtype=bool)
+        for (kind, *arrays), bad in zip(records, bads):
+            bad = flat(bad)[idx]
+            sub = [flat(v)[idx] for v in arrays]
+            if kind == "linear":
+                code = numpy.where(sub[0] == 0, INPUT_SINGULAR, JOINT_AT_INFINITY)
+                here = numpy.zeros(len(idx), dtype=bool)
+            elif kind == "pure":
+                code = numpy.where(sub[0] < 0, NO_REAL_SOLUTION, JOINT_AT_INFINITY)
+                here = sub[0] == 0.0
+            else:
+                code = numpy.where(sub[0] < -DISC_RTOL * sub[1], NO_REAL_SOLUTION,
+                                   JOINT_AT_INFINITY)
+                here = numpy.abs(sub[0]) <= DISC_RTOL * sub[1]
+            first = bad & ~decided  # the first failure wins
+            codes[first] = code[first]
+            decided |= bad
+            boundary |= ~decided & here
+        codes[~decided & boundary] = ON_BOUNDARY
+        codes[invalid[idx]] = INVALID_INPUT
+        status[idx] = codes
+    return status.reshape(shape)
+
+
+def backsubstitute_detailed(inputs, steps, indices, n_out, mode, par, with_status=False,
+                            per_step=None):
+    """Solve ``steps`` in order (linear or quadratic in one unknown each); NaN on failure.
+
     ``inputs`` has shape (..., n_in); the result has shape (..., n_out) with unknown k at
     ``indices[k]``, all NaN where any step fails (a view whose columns are contiguous);
     status codes are computed on request.

@@ -39,9 +39,12 @@ import numpy
 FLAGS = ("-O3", "-fPIC", "-shared", "-ffp-contract=off", "-fno-math-errno",
          "-fno-trapping-math", "-fopenmp-simd", "-std=c99")
 HEADER_DIR = Path(__file__).resolve().parent / "c"
-C_ABI = 1
+C_ABI = 2
 # poses per thread below which one thread does the whole batch
 MIN_PER_THREAD = 20_000
+# poses per compiled call where the results are converted afterwards (``solve``'s ``post``):
+# the block is still in cache when the conversion reads it
+POST_BLOCK = 8192
 
 _lock = threading.Lock()
 _pool: ThreadPoolExecutor | None = None
@@ -195,12 +198,19 @@ class FastPath:
         fn.restype = None
         fn.argtypes = [ctypes.c_long, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int,
                        ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
+        fn = handle.bonered_scan
+        fn.restype = ctypes.c_long
+        fn.argtypes = [ctypes.c_long, ctypes.c_long, ctypes.c_int, *[ctypes.c_void_p] * 5,
+                       ctypes.c_int, *[ctypes.c_void_p] * 6]
         return handle
 
     # ------------------------------------------------------------ calling
-    def solve(self, pose: numpy.ndarray, par, mode: int, limits: bool, jacobian: bool):
+    def solve(self, pose: numpy.ndarray, par, mode: int, limits: bool, jacobian: bool,
+              post=None):
         """IK (and dq/dX) of poses (..., n_pose) with scalar parameters: (q, status, J or
-        None), shapes as the numpy runtime returns them."""
+        None), shapes as the numpy runtime returns them.  ``post(q, J)``, where given, is
+        called in place on each block of POST_BLOCK poses just computed (in cache): the
+        conversion to the user's units."""
         lib = self.library()
         shape = pose.shape[:-1]
         n = int(numpy.prod(shape, dtype=numpy.int64))
@@ -211,10 +221,15 @@ class FastPath:
         jac = numpy.empty((n, self.n_joints, self.n_pose)) if jacobian else None
 
         def run(lo: int, hi: int) -> None:
-            lib.bonered_solve(
-                hi - lo, flat[lo:].ctypes.data, parv.ctypes.data, int(mode), int(bool(limits)),
-                q[lo:].ctypes.data, status[lo:].ctypes.data,
-                jac[lo:].ctypes.data if jacobian else None)
+            step = max(1, hi - lo) if post is None else POST_BLOCK
+            for a in range(lo, hi, step):
+                b = min(hi, a + step)
+                lib.bonered_solve(
+                    b - a, flat[a:].ctypes.data, parv.ctypes.data, int(mode),
+                    int(bool(limits)), q[a:].ctypes.data, status[a:].ctypes.data,
+                    jac[a:].ctypes.data if jacobian else None)
+                if post is not None:
+                    post(q[a:b], None if jac is None else jac[a:b])
 
         k = min(threads(), max(1, n // MIN_PER_THREAD))
         if k == 1:
@@ -226,3 +241,36 @@ class FastPath:
                 f.result()
         return (q.reshape(shape + (self.n_joints,)), status.reshape(shape),
                 None if jac is None else jac.reshape(shape + (self.n_joints, self.n_pose)))
+
+    def scan(self, start: int, stop: int, axes: list[tuple[int, float, float, int]],
+             fixed: numpy.ndarray, modes, par, keep_mask: bool):
+        """Samples ``start:stop`` of a grid (C order) classified by working modes ``modes``
+        with the module's own limits, in one call without the GIL (``bonered_scan`` of
+        ``generated/<name>.c``).  ``axes``: per grid axis ``(pose index, lo, step, n)``;
+        ``fixed``: a full pose holding the fixed coordinates.  Returns ``(count, lo, hi,
+        reasons, packed)``: the reached samples, each axis's extremes over them (inf, -inf
+        where none), ``{code: samples}``, and the mask as ``numpy.packbits`` bytes or
+        None."""
+        lib = self.library()
+        naxes = len(axes)
+        shape = numpy.array([a[3] for a in axes], dtype=numpy.int64)
+        lo = numpy.array([a[1] for a in axes], dtype=numpy.float64)
+        step = numpy.array([a[2] for a in axes], dtype=numpy.float64)
+        coord = numpy.array([a[0] for a in axes], dtype=numpy.intc)
+        fixed = numpy.ascontiguousarray(fixed, dtype=numpy.float64)
+        modes = numpy.array(list(modes), dtype=numpy.intc)
+        parv = numpy.ascontiguousarray([float(v) for v in par], dtype=numpy.float64)
+        axis_lo = numpy.full(naxes, numpy.inf)
+        axis_hi = numpy.full(naxes, -numpy.inf)
+        reasons = numpy.zeros(128, dtype=numpy.int64)
+        m = max(stop - start, 0)
+        packed = numpy.zeros((m + 7) // 8, dtype=numpy.uint8) if keep_mask else None
+        count = lib.bonered_scan(
+            start, stop, naxes, shape.ctypes.data, lo.ctypes.data, step.ctypes.data,
+            coord.ctypes.data, fixed.ctypes.data, len(modes), modes.ctypes.data,
+            parv.ctypes.data, axis_lo.ctypes.data, axis_hi.ctypes.data, reasons.ctypes.data,
+            packed.ctypes.data if keep_mask else None)
+        found = numpy.flatnonzero(reasons)
+        return (int(count), axis_lo, axis_hi,
+                {int(c): int(reasons[c]) for c in found},
+                packed.tobytes() if keep_mask else None)

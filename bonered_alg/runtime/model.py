@@ -128,6 +128,18 @@ class Model:
         q[..., idx] = numpy.tan(0.5 * q[..., idx])
         return q
 
+    def publish(self, q, J=None):
+        """In place: the algebra's joints ``q`` (tan-half-angles where ``angles``) as the
+        user's, and the rows of ``dq/dX`` (``J``, where given) alike: the same numbers as
+        :meth:`public` and :meth:`_public_jacobian`, without a copy (the hot functions call
+        it on each chunk, while it is in cache)."""
+        for i in self.angles:
+            t = q[..., i]
+            if J is not None:
+                J[..., i, :] *= (2.0 / (1.0 + t ** 2))[..., None]
+            numpy.arctan(t, out=t)
+            t *= 2.0
+
     def _public_jacobian(self, t, J):
         """``dq/dX`` from ``dt/dX``: the rows of the angle joints times ``dq/dt =
         2 / (1 + t^2)`` (``t`` the algebra's joints)."""
@@ -167,24 +179,28 @@ class Model:
         return None
 
     def solve(self, pose, mode, par, with_status=False, limits=True, fast=None,
-              func="ik"):
+              func="ik", public=False):
         """Inverse kinematics of one working mode; NaN at input singularities of linear
         steps and, with ``limits``, outside the ranges of ``LIMITS``.
 
         A linear step ``B q + C = 0`` is singular where its pivot ``B = dG/dq`` vanishes
         relative to the generator's derivatives (the joint is then undetermined).  Through
         the compiled fast path where available (``fast``), else in numpy, in chunks of
-        CHUNK poses (temporaries that stay in cache, memory bounded at any batch size)."""
+        CHUNK poses (temporaries that stay in cache, memory bounded at any batch size).
+        ``public``: the joints in the user's units (:meth:`publish`), else the algebra's."""
         compiled = self._fast_path(func, fast, par)
         if compiled is not None:
-            q, status, _ = compiled.solve(pose, par, mode, limits, False)
+            q, status, _ = compiled.solve(pose, par, mode, limits, False,
+                                          self.publish if public else None)
             return q, (status if with_status else None)
         return _chunked(pose, par, lambda p, pr: self._solve(p, mode, pr, with_status,
-                                                             limits))
+                                                             limits, public))
 
-    def _solve(self, pose, mode, par, with_status, limits):
+    def _solve(self, pose, mode, par, with_status, limits, public=False):
         q, status = self._solve_by_columns(pose, mode, par, with_status, limits)
-        return numpy.ascontiguousarray(q), status
+        if public:
+            self.publish(q)  # q's columns are rows of a fresh array: contiguous, in cache
+        return q, status
 
     def _solve_by_columns(self, pose, mode, par, with_status, limits):
         """``_solve`` with ``q`` a view whose columns are contiguous (the kernels take one
@@ -198,7 +214,7 @@ class Model:
         study = numpy.moveaxis(study, 0, -1)
         q, status = backsubstitute(study, self.steps, self.solve_index, len(self.joints), mode,
                                    par, with_status)
-        if with_status:
+        if with_status and not numpy.isfinite(pose).all():
             status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
         if self.pivots is not None:
             q, status = self._pivot_check(study, q, status, par, with_status)
@@ -215,8 +231,10 @@ class Model:
         for v, (_, lower, upper, kind, _, _) in zip(values, self.limits):
             v = numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
             violated[kind] |= (v < lower) | (v > upper)
-        ok = numpy.all(numpy.isfinite(q), axis=-1)
         out = violated["stroke"] | violated["passive"]
+        if not out.any():  # nothing changes
+            return q, status
+        ok = numpy.all(numpy.isfinite(q), axis=-1)
         q[out] = numpy.nan
         if with_status:
             status = numpy.where(ok & violated["passive"] & (status == OK),
@@ -234,6 +252,8 @@ class Model:
             singular = numpy.zeros(shape, dtype=bool)
             for d, sc in zip(values[:half], values[half:]):
                 singular |= numpy.abs(d) <= DET_RTOL * numpy.abs(sc)
+        if not singular.any():  # nothing changes
+            return q, status
         singular &= numpy.all(numpy.isfinite(q), axis=-1)
         q[singular] = numpy.nan
         if with_status:
@@ -249,7 +269,7 @@ class Model:
 
     def ik(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik", pose, mode, limits, params)
-        return self.public(self.solve(pose, mode, par, False, limits, fast, "ik")[0])
+        return self.solve(pose, mode, par, False, limits, fast, "ik", True)[0]
 
     def ik_status(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik_status", pose, mode, limits, params)
@@ -257,13 +277,11 @@ class Model:
 
     def ik_and_status(self, pose, mode=0, limits=True, params=None, fast=None):
         pose, mode, par, limits = self._ik_args("ik_and_status", pose, mode, limits, params)
-        q, status = self.solve(pose, mode, par, True, limits, fast, "ik_and_status")
-        return self.public(q), status
+        return self.solve(pose, mode, par, True, limits, fast, "ik_and_status", True)
 
     def ik_all(self, pose, limits=True, params=None, fast=None):
         pose, _, par, limits = self._ik_args("ik_all", pose, 0, limits, params)
-        return numpy.stack([self.public(self.solve(pose, m, par, False, limits, fast,
-                                                   "ik_all")[0])
+        return numpy.stack([self.solve(pose, m, par, False, limits, fast, "ik_all", True)[0]
                             for m in range(self.modes)], axis=-2)
 
     # ------------------------------------------------------------ why a pose fails
@@ -412,11 +430,12 @@ class Model:
         return self._matrices(pose, q, check.parameters(self, "output_jacobian",
                                                         params or {}))[1]
 
-    def _jac_values(self, pose, q, par):
+    def _jac_values(self, pose, q, par, into=None):
         """The Jacobian kernel's outputs (pivots, row scales, dq/dX row-major), one row
         each: (outputs, ...) for poses (..., len(POSE)), evaluated JAC_CHUNK poses at a
-        time (its many temporaries then stay in cache: the Stewart kernel twice as fast
-        as on CHUNK poses)."""
+        time (its temporaries then stay in cache).  With ``into`` (n, len(JOINTS) *
+        len(POSE)), the rows of dq/dX go there directly and only the pivots and row
+        scales are returned."""
         shape = pose.shape[:-1]
         n = int(numpy.prod(shape, dtype=numpy.int64))
         flat_pose = pose.reshape(n, pose.shape[-1])
@@ -424,6 +443,7 @@ class Model:
         flat_par = [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
                     for v in par]
         out = None
+        nps = 2 * len(self.joints)
         with numpy.errstate(all="ignore"):
             for lo in range(0, n, JAC_CHUNK):
                 hi = min(n, lo + JAC_CHUNK)
@@ -431,11 +451,15 @@ class Model:
                                   *columns(flat_q[lo:hi]),
                                   *[v if numpy.ndim(v) == 0 else v[lo:hi] for v in flat_par])
                 if out is None:
-                    out = numpy.empty((len(values), n))
+                    out = numpy.empty((len(values) if into is None else nps, n))
                 for k, v in enumerate(values):
-                    out[k, lo:hi] = v
+                    if into is not None and k >= nps:
+                        into[lo:hi, k - nps] = v
+                    else:
+                        out[k, lo:hi] = v
         if out is None:  # no poses
-            out = numpy.empty((2 * len(self.joints) + len(self.joints) * len(self.pose), 0))
+            out = numpy.empty((nps + (0 if into is not None else
+                                      len(self.joints) * len(self.pose)), 0))
         return out.reshape((out.shape[0],) + shape)
 
     @staticmethod
@@ -460,31 +484,39 @@ class Model:
         """``(q, dq/dX, status)`` from one solve: ``ik``, ``jacobian`` and
         ``jacobian_status`` together."""
         pose, mode, par, limits = self._ik_args(func, pose, mode, limits, params)
-        q, J, status = self._solve_with_jacobian(pose, mode, par, limits, func, fast)
-        return self.public(q), self._public_jacobian(q, J), status
+        return self._solve_with_jacobian(pose, mode, par, limits, func, fast, True)
 
-    def _solve_with_jacobian(self, pose, mode, par, limits, func, fast=None):
-        """``(q, dq/dX, status)`` in the algebra's units (t = tan(q/2) for angle joints), through
-        the compiled fast path where available, else in numpy."""
+    def _solve_with_jacobian(self, pose, mode, par, limits, func, fast=None, public=False):
+        """``(q, dq/dX, status)``, through the compiled fast path where available, else in
+        numpy; in the user's units with ``public`` (:meth:`publish`), else the algebra's
+        (t = tan(q/2) for angle joints)."""
         compiled = self._fast_path(func, fast, par)
         if compiled is not None:
-            q, status, J = compiled.solve(pose, par, mode, limits, True)
+            q, status, J = compiled.solve(pose, par, mode, limits, True,
+                                          self.publish if public else None)
             return q, J, status
-        return _chunked(pose, par, lambda p, pr: self._ik_jacobian(p, mode, pr, limits))
-
-    def _ik_jacobian(self, pose, mode, par, limits):
-        q, status = self._solve_by_columns(pose, mode, par, True, limits)
-        shape = pose.shape[:-1]
         n, m = len(self.joints), len(self.pose)
-        values = self._jac_values(pose, q, par)
-        singular = self.pivot_singular(values[:n], values[n:2 * n], shape)
-        J = numpy.ascontiguousarray(numpy.moveaxis(values[2 * n:], 0, -1)).reshape(
-            shape + (n, m))
+        return _chunked_into(pose, par, (((n,), float), ((n, m), float), ((), numpy.int8)),
+                             lambda p, pr, *out: self._ik_jacobian(p, mode, pr, limits,
+                                                                   public, *out))
+
+    def _ik_jacobian(self, pose, mode, par, limits, public, q_out, J_out, status_out):
+        """``q``, ``J`` and the status of poses (k, len(POSE)) written into ``q_out`` (k,
+        len(JOINTS)), ``J_out`` (k, len(JOINTS), len(POSE), C-contiguous rows) and
+        ``status_out`` (k,); the kernel's rows of dq/dX are written into ``J_out``
+        directly."""
+        q, status = self._solve_by_columns(pose, mode, par, True, limits)
+        k = pose.shape[0]
+        n, m = len(self.joints), len(self.pose)
+        values = self._jac_values(pose, q, par, into=J_out.reshape(k, n * m))
+        singular = self.pivot_singular(values[:n], values[n:2 * n], (k,))
         singular |= status == ON_BOUNDARY
-        J[singular] = numpy.nan
+        J_out[singular] = numpy.nan
+        q_out[...] = q
         ik_ok = (status == OK) | (status == ON_BOUNDARY)
-        status = numpy.where(ik_ok & singular, INPUT_SINGULAR, status).astype(numpy.int8)
-        return numpy.ascontiguousarray(q), J, status
+        status_out[...] = numpy.where(ik_ok & singular, INPUT_SINGULAR, status)
+        if public:
+            self.publish(q_out, J_out)
 
     def singularities(self, pose, q, params=None):
         pose = check.pose(self, "singularities", pose)
@@ -647,21 +679,20 @@ class Model:
 CHUNK = 16384
 # poses per evaluation of the Jacobian kernel, whose temporaries are many more (measured on
 # this project's machine: Stewart 610 ns per pose on 4096, 1150 on 16384)
-JAC_CHUNK = 4096
+JAC_CHUNK = 8192
 
 
 def _chunked(pose, par, fn):
-    """``fn(pose, par)`` over chunks of CHUNK poses, the results (arrays with the poses'
-    leading shape, or None) put back together; array parameters are split alike."""
+    """``fn(pose, par)`` over chunks of at most CHUNK poses, each of shape (k, len(POSE)),
+    the results (arrays of k leading rows, any strides, or None) copied into contiguous
+    arrays of the poses' leading shape; array parameters are split alike."""
     shape = pose.shape[:-1]
     n = int(numpy.prod(shape, dtype=numpy.int64))
-    if n <= CHUNK:
-        return fn(pose, par)
     flat = pose.reshape(n, pose.shape[-1])
     par_flat = [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
                 for v in par]
     outs = None
-    for lo in range(0, n, CHUNK):
+    for lo in range(0, max(n, 1), CHUNK):  # an empty batch: one empty chunk
         hi = min(n, lo + CHUNK)
         part = fn(flat[lo:hi], [v if numpy.ndim(v) == 0 else v[lo:hi] for v in par_flat])
         if outs is None:
@@ -671,6 +702,24 @@ def _chunked(pose, par, fn):
             if o is not None:
                 o[lo:hi] = r
     return tuple(None if o is None else o.reshape(shape + o.shape[1:]) for o in outs)
+
+
+def _chunked_into(pose, par, specs, fn):
+    """:func:`_chunked` for a ``fn(pose, par, *out)`` that writes its results into the
+    chunk's rows of arrays allocated here once, one per ``(trailing shape, dtype)`` of
+    ``specs`` (no copy from the chunk's own arrays), returned with the poses' leading
+    shape."""
+    shape = pose.shape[:-1]
+    n = int(numpy.prod(shape, dtype=numpy.int64))
+    flat = pose.reshape(n, pose.shape[-1])
+    par_flat = [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
+                for v in par]
+    outs = [numpy.empty((n,) + tail, dtype=dtype) for tail, dtype in specs]
+    for lo in range(0, max(n, 1), CHUNK):
+        hi = min(n, lo + CHUNK)
+        fn(flat[lo:hi], [v if numpy.ndim(v) == 0 else v[lo:hi] for v in par_flat],
+           *[o[lo:hi] for o in outs])
+    return tuple(o.reshape(shape + o.shape[1:]) for o in outs)
 
 
 def linear_candidates(values):

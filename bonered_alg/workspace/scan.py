@@ -77,9 +77,41 @@ class ScanResult:
         return hi - lo
 
 
+def compiled_scan(module, criteria: Criteria, params: Mapping):
+    """``(fast path, parameters)`` where a chunk can be classified and reduced in one
+    compiled call (:meth:`bonered_alg.runtime.compiled.FastPath.scan`): the module's fast
+    path is available for these parameters and the criteria are the module's own limits
+    without a singularity margin; else None (:func:`~.membership.classify` in numpy around
+    the IK, compiled or not)."""
+    if criteria.limits or criteria.min_margin > 0:
+        return None
+    model = getattr(module, "_MODEL", None)
+    if model is None or getattr(model, "fast", None) is None:
+        return None
+    from ..runtime import inputs
+
+    par = inputs.parameters(model, "scan", dict(params))
+    fast = model._fast_path("scan", None, par)  # noqa: SLF001
+    return None if fast is None else (fast, par)
+
+
 def scan_chunk(mechanism: str | ModuleType, grid: Grid, start: int, stop: int, criteria: Criteria,
                params: Mapping, keep_mask: bool) -> ChunkResult:
-    """Classify samples ``start:stop`` of ``grid`` (runs in a worker)."""
+    """Classify samples ``start:stop`` of ``grid`` (runs in a worker): in one compiled call
+    where :func:`compiled_scan` allows it, else with :func:`~.membership.classify`."""
+    module = load_module(mechanism)
+    compiled = compiled_scan(module, criteria, params)
+    if compiled is not None:
+        fast, par = compiled
+        names = list(grid.pose_names)
+        fixed = np.zeros(len(names))
+        for name, value in grid.fixed.items():
+            fixed[names.index(name)] = value
+        axes = [(names.index(a.name), a.lo, a.step, a.n) for a in grid.axes]
+        count, lo, hi, reasons, packed = fast.scan(start, stop, axes, fixed, criteria.modes,
+                                                   par, keep_mask)
+        return ChunkResult(start, count, tuple(float(v) for v in lo),
+                           tuple(float(v) for v in hi), reasons, packed)
     axis_values = grid.axis_values(start, stop)
     code = classify(mechanism, grid.poses(start, stop, axis_values), criteria, **params)
     inside = code == IN_WORKSPACE

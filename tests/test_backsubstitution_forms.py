@@ -1,0 +1,110 @@
+"""The lean back-substitution (the hot path of ``ik``, ``ik_and_status``, ``ik_and_jacobian``)
+against the detailed one (the per-step record behind ``ik_joint_status`` and ``ik_explain``):
+the same roots bit for bit, the same NaN and the same status codes, on synthetic steps that
+reach every code and on every generated mechanism's own steps."""
+
+import importlib
+
+import numpy as np
+import pytest
+
+from bonered_alg.registry import MECHANISMS
+from bonered_alg.runtime import status as st
+from bonered_alg.runtime.backsubstitution import backsubstitute_detailed, backsubstitute_lean
+from bonered_alg.runtime.inputs import stacked
+
+
+def _pure(x, y, *par):
+    """q^2 x - y (B the constant 0, as a distance leg): q = +-sqrt(y / x)."""
+    return x, 0.0, -y
+
+
+def _general(x, y, q, *par):
+    """p^2 + q p + y: a general quadratic, its discriminant q^2 - 4 y."""
+    return 1.0, q, y
+
+
+def _linear(x, y, q, p, *par):
+    """(x - 1) r - p: r = p / (x - 1), pivot x - 1."""
+    return 0.0, x - 1.0, -p
+
+
+STEPS = ((2, _pure, 0), (2, _general, 1), (1, _linear, None))
+
+
+def _assert_same(a, b):
+    (qa, sa), (qb, sb) = a, b
+    assert np.array_equal(np.isnan(qa), np.isnan(qb))
+    assert np.array_equal(qa, qb, equal_nan=True)
+    assert (sa is None) == (sb is None)
+    if sa is not None:
+        assert np.array_equal(sa, sb)
+
+
+def test_every_status_code_as_the_detailed_form():
+    inputs = np.array([
+        [2.0, 8.0],     # q = 2, p^2 + 2p + 8: no real root (step 2)
+        [0.125, 0.5],   # q = 2, p^2 + 2p + 1/2 = 0: two real roots, r = p / (x - 1): OK
+        [-1.0, 4.0],    # y / x < 0: no real root of the pure step
+        [1.0, 0.0],     # q = 0: a double root of the pure step (ON_BOUNDARY) ...
+        [1.0, 1.0],     # q = 1, p^2 + p + 1: no real root; pivot x - 1 = 0 too (later step)
+        [4.0, 4.0],     # q = 1: p^2 + p + 4: no real root
+        [0.25, 0.25],   # q = 1, p^2 + p + 1/4: a double root p = -1/2 (ON_BOUNDARY)
+        [0.0, 1.0],     # A = 0 and C != 0: the pure step's root at infinity
+        [np.nan, 1.0],  # invalid input
+        [2.0, np.inf],  # invalid input
+        [1.0, -1.0],    # no real root of the pure step before the zero pivot
+    ])
+    seen = set()
+    for mode in range(4):
+        for with_status in (False, True):
+            lean = backsubstitute_lean(inputs, STEPS, (0, 1, 2), 3, mode, [], with_status)
+            detailed = backsubstitute_detailed(inputs, STEPS, (0, 1, 2), 3, mode, [],
+                                               with_status)
+            _assert_same(lean, detailed)
+            if with_status:
+                seen |= set(lean[1].tolist())
+    # the cases reach every code a back-substitution gives
+    assert {st.OK, st.NO_REAL_SOLUTION, st.JOINT_AT_INFINITY, st.ON_BOUNDARY,
+            st.INPUT_SINGULAR, st.INVALID_INPUT} <= seen
+
+
+def test_zero_pivot_of_a_linear_step_as_the_detailed_form():
+    # x = 1: the linear step's pivot vanishes after two valid steps (q = 1, p^2 + p - 2)
+    inputs = np.array([[1.0, 1.0], [1.0, 1.0]])
+    steps = ((2, _pure, 0), (2, lambda x, y, q: (1.0, q, -2.0 * y), 1), (1, _linear, None))
+    lean = backsubstitute_lean(inputs, steps, (0, 1, 2), 3, 0, [], True)
+    _assert_same(lean, backsubstitute_detailed(inputs, steps, (0, 1, 2), 3, 0, [], True))
+    assert (lean[1] == st.INPUT_SINGULAR).all()
+
+
+def test_single_input_without_leading_axes():
+    for x in ([0.125, 0.5], [-1.0, 4.0], [1.0, 0.0]):
+        inputs = np.array(x)
+        lean = backsubstitute_lean(inputs, STEPS, (0, 1, 2), 3, 0, [], True)
+        _assert_same(lean, backsubstitute_detailed(inputs, STEPS, (0, 1, 2), 3, 0, [], True))
+        assert lean[0].shape == (3,) and lean[1].shape == ()
+
+
+@pytest.mark.parametrize("name", sorted(MECHANISMS))
+def test_generated_steps_as_the_detailed_form(name):
+    """Every mechanism's IK steps on its Study coordinates of random poses around home,
+    many of them out of reach, in every working mode."""
+    m = importlib.import_module(f"bonered_alg.generated.{name}")
+    model = m._MODEL
+    rng = np.random.default_rng(7)
+    home = np.array(m.HOME) if getattr(m, "HOME", None) else None
+    scale = np.array([40.0 if u == "mm" else 0.4 for u in m.POSE_UNITS])
+    centre = home if home is not None else np.zeros(len(m.POSE))
+    poses = centre + rng.uniform(-1.0, 1.0, (3000, len(m.POSE))) * scale
+    poses[::97, 0] = np.nan
+    par = [m.PARAMETERS[k] for k in m.PARAMETERS]
+    study = stacked(model.study(*poses.T, *par), poses.shape[:-1])
+    codes = set()
+    for mode in range(min(model.modes, 8)):
+        args = (study, model.steps, model.solve_index, len(model.joints), mode, par)
+        lean = backsubstitute_lean(*args, True)
+        _assert_same(lean, backsubstitute_detailed(*args, True))
+        _assert_same(backsubstitute_lean(*args, False), backsubstitute_detailed(*args, False))
+        codes |= set(lean[1].tolist())
+    assert st.OK in codes and len(codes) > 1  # valid poses and failures both
