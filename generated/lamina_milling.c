@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c6b5dcbdd50c1869dfd47af49e5cfd72be6bccdc889989c7812f0a5762739a53
+ * Derivation hash: 083237c48db288dfd1e357e51f5785862a09e60a785f11c49a0830c0f63b7844
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c6b5dcbdd50c1869dfd47af49e5cfd72be6bccdc889989c7812f0a5762739a53";
+const char bonered_derivation_hash[] = "083237c48db288dfd1e357e51f5785862a09e60a785f11c49a0830c0f63b7844";
 int bonered_abi(void) { return 2; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

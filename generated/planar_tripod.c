@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 112501fde5ef7ce8d6cb3ab980d6b034e2b76d3e085bd8e5cb2111bbb5110b67
+ * Derivation hash: 78cf6c8a1547ad04c87cc0a426f1b458bf9113cee14a8f00189813d157da1750
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "112501fde5ef7ce8d6cb3ab980d6b034e2b76d3e085bd8e5cb2111bbb5110b67";
+const char bonered_derivation_hash[] = "78cf6c8a1547ad04c87cc0a426f1b458bf9113cee14a8f00189813d157da1750";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

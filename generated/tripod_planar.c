@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f4d88a21bae36dc5f18c8697baa29b8c3bd40ce167d2ed0dfe78b2ae2e917e05
+ * Derivation hash: 32e70ffee885144ac3f46b159b1bdb4013ed9c76049ebbc2f54ec0f2542bb819
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "f4d88a21bae36dc5f18c8697baa29b8c3bd40ce167d2ed0dfe78b2ae2e917e05";
+const char bonered_derivation_hash[] = "32e70ffee885144ac3f46b159b1bdb4013ed9c76049ebbc2f54ec0f2542bb819";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

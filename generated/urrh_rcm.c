@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9f7394a5017f8694f4b7c260d545805c7ba7bc0e194f5b4927cc95115e42aa35
+ * Derivation hash: 8793360afb4ef97a96a1905203d62fdd3e4e607a7d13fe18ad6b2e745517b570
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "9f7394a5017f8694f4b7c260d545805c7ba7bc0e194f5b4927cc95115e42aa35";
+const char bonered_derivation_hash[] = "8793360afb4ef97a96a1905203d62fdd3e4e607a7d13fe18ad6b2e745517b570";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

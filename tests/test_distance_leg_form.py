@@ -75,3 +75,40 @@ def test_the_stewart_module_evaluates_its_legs_in_the_geometric_form():
 
     steps = {k: v for k, v in stewart.OPERATIONS.items() if k.startswith("_step")}
     assert len(steps) == 6 and max(steps.values()) < 200, steps
+
+
+def test_the_sphere_condition_between_the_points_is_that_of_the_whole_chain():
+    """certify takes the sphere condition on the chain between the two points (T(-A) X T(B)
+    = Mid for X = T(A) Mid T(-B)); that shortcut is exact: the same polynomial as on the
+    whole chain product, for a U-P-S leg with symbolic points (zero) and for a chain whose
+    middle is not a distance leg (a slide across the stroke: not zero, and equal too)."""
+    from bonered_alg.chains.joints import Role, joint, leg
+
+    u = sp.symbols("u1 u2", real=True)
+    e = sp.symbols("e0:4", real=True)
+    a, b = (A[0], A[1], sp.Integer(3)), (B[0], sp.Integer(2), B[1])
+    ups = leg("L", joint("t", "offset", "A", vector=a),
+              joint("t", "universal", "U", ("x", "y"), u, Role.PASSIVE),
+              joint("t", "prismatic", "P", "z", Q, Role.ACTIVE),
+              joint("t", "spherical", "S", e, Role.PASSIVE),
+              joint("t", "offset", "B", vector=tuple(-c for c in b)))
+    d = sphere_leg.recognize(ups)
+    assert d is not None and d.base == a and d.platform == b
+    d0, mid = sphere_leg._between_the_points(ups, d)
+    assert d0.base == d0.platform == (0, 0, 0)
+    short = sphere_leg.sphere_condition(d0, mid)
+    assert short == 0 == sphere_leg.sphere_condition(d, ups.product())
+    # a passive slide across the stroke: the distance is not |q| (not a distance leg)
+    v = sp.Symbol("v", real=True)
+    wrong = leg("W", joint("t", "offset", "A", vector=a),
+                joint("t", "universal", "U", ("x", "y"), u, Role.PASSIVE),
+                joint("t", "prismatic", "P", "z", Q, Role.ACTIVE),
+                joint("t", "offset", "V", vector=(v, 0, 0)),
+                joint("t", "spherical", "S", e, Role.PASSIVE),
+                joint("t", "offset", "B", vector=tuple(-c for c in b)))
+    dw = sphere_leg.DistanceLeg("W", a, b, Q)
+    d0, mid = sphere_leg._between_the_points(wrong, dw)
+    short = sphere_leg.sphere_condition(d0, mid)
+    assert short != 0
+    assert sp.expand(short - sphere_leg.sphere_condition(dw, wrong.product())) == 0 or \
+        sp.expand(short + sphere_leg.sphere_condition(dw, wrong.product())) == 0

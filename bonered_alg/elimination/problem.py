@@ -72,6 +72,15 @@ def as_expressions(basis, gens) -> list[sp.Expr]:
             for terms in basis]
 
 
+def _expressions(result, gens) -> tuple[sp.Expr, ...]:
+    """``as_expressions(result.basis, gens)``, kept on ``result`` after the first call."""
+    memo = result.__dict__.get("_expressions")
+    if memo is None or memo[0] is not result.basis or memo[1] != gens:
+        memo = (result.basis, gens, tuple(as_expressions(result.basis, gens)))
+        result.__dict__["_expressions"] = memo
+    return memo[2]
+
+
 def normal_parametric_basis(polys, unknowns, parameters) -> tuple[pt.PolyTerms, ...]:
     """Primitive over Z[parameters], positive leading coefficient, sorted (deterministic)."""
     gens = tuple(unknowns) + tuple(parameters)
@@ -136,7 +145,7 @@ class ParametricResult:
 
     @property
     def generators(self) -> list[sp.Expr]:
-        return as_expressions(self.basis, self.problem.gens)
+        return list(_expressions(self, self.problem.gens))
 
 
 @dataclass
@@ -152,8 +161,9 @@ class EliminationResult:
 
     @property
     def generators(self) -> list[sp.Expr]:
-        """The generators as sympy expressions in ``problem.keep``."""
-        return as_expressions(self.basis, self.problem.keep)
+        """The generators as sympy expressions in ``problem.keep`` (built once: a large
+        basis takes seconds, and a derivation asks for it many times)."""
+        return list(_expressions(self, self.problem.keep))
 
     @property
     def is_unit_ideal(self) -> bool:

@@ -159,6 +159,27 @@ def _rank(leg: Leg, d: DistanceLeg, passive: tuple, params: dict, seed: int,
     return best
 
 
+def _between_the_points(leg: Leg, d: DistanceLeg) -> tuple[DistanceLeg, tuple]:
+    """``(d0, M)`` with ``sphere_condition(d0, M) = sphere_condition(d, leg.product())``:
+    ``T(-A) X T(B)`` for the chain ``X = T(A) Mid T(-B)`` is ``Mid`` (the product is
+    associative and ``T(-A) T(A) = T(B) T(-B) = 1``, checked here exactly), so the sphere
+    condition is taken on ``Mid`` and the points ``A = B = 0`` (``d0``), without expanding
+    the layout's coordinates into every term (a Stewart leg: a fifth of its derivation)."""
+    fs = [f.study() for f in leg.factors]
+    ends = []
+    zero = (sp.Integer(0),) * 3
+    if fs and _vector(leg.factors[0]) is not None and tuple(d.base) != zero:
+        ends.append(ss.product(ss.translation_vector(tuple(-c for c in d.base)), fs[0]))
+        fs = fs[1:]
+    if fs and _vector(leg.factors[-1]) is not None and tuple(d.platform) != zero:
+        ends.append(ss.product(fs[-1], ss.translation_vector(d.platform)))
+        fs = fs[:-1]
+    one = (sp.Integer(1),) + (sp.Integer(0),) * 7
+    if any(tuple(sp.expand(c) for c in e) != one for e in ends):  # pragma: no cover
+        return d, leg.product()  # not the shape recognize() read: the full product
+    return DistanceLeg(d.leg, zero, zero, d.stroke), ss.product(*fs)
+
+
 def minimal_polynomials(constants: dict) -> dict:
     """symbol -> minimal polynomial over Q of each algebraic constant's value."""
     return {c: sp.minimal_polynomial(v, c) for c, v in constants.items()}
@@ -175,7 +196,7 @@ def certify(leg: Leg, d: DistanceLeg, platform: tuple, passive: tuple, params: d
         raise NotADistanceLeg(f"leg {leg.name}: the chain's image has dimension {rank}, not 6")
     chain = leg.product()
     minpolys = minimal_polynomials(constants)
-    gen = sphere_condition(d, chain, minpolys)
+    gen = sphere_condition(*_between_the_points(leg, d), minpolys)
     if gen != 0:
         raise NotADistanceLeg(f"leg {leg.name}: the sphere condition does not vanish on the "
                               "chain product")

@@ -155,11 +155,12 @@ def _steps(basis, unknowns, context, points=(),
     solved: list[sp.Symbol] = []
     steps: list[LinearStep | QuadraticStep] = []
     remaining = list(unknowns)
+    memo: dict = {}
     while remaining:
-        best, quadratic = _best(basis, remaining, points, {})
+        best, quadratic = _best(basis, remaining, points, {}, memo)
         if best is None and quadratic is None and eliminated is not None:
             bases = {v: eliminated(v, [w for w in remaining if w != v]) for v in remaining}
-            best, quadratic = _best(None, remaining, points, bases)
+            best, quadratic = _best(None, remaining, points, bases, memo)
         if best is not None:
             v, cands = best
             steps.append(LinearStep(v, _covering(cands, probe)))
@@ -187,27 +188,54 @@ def _without_spurious_factors(g: sp.Expr, v: sp.Symbol) -> sp.Expr:
     return sp.expand(sp.Mul(*keep)) if keep else g
 
 
-def _best(basis, remaining, points, bases):
+def _candidate(g: sp.Expr, v: sp.Symbol, memo: dict):
+    """``(ops, degree, coefficients)`` of ``g`` as a polynomial in ``v`` (coefficients of
+    ``v, 1`` for degree 1, of ``v^2, v, 1`` for degree 2; None for another degree), after
+    removing the factors that vanish for no real ``v``; computed once per generator and
+    variable (a ``Poly`` of a large generator takes long, and :func:`_steps` asks again in
+    every round)."""
+    key = (g, v)
+    if key not in memo:
+        poly = sp.Poly(g, v)
+        if poly.degree() > 2:  # a factor 1 + v^2 (no real zero) or a content may hide one
+            g = _without_spurious_factors(g, v)
+            poly = sp.Poly(g, v)
+        ops = int(sp.count_ops(g))
+        if poly.degree() == 1:
+            out = (ops, 1, (sp.expand(poly.coeff_monomial(v)),
+                            sp.expand(poly.coeff_monomial(1))))
+        elif poly.degree() == 2:
+            out = (ops, 2, tuple(sp.expand(poly.coeff_monomial(v**k)) for k in (2, 1, 0)))
+        else:
+            out = (ops, poly.degree(), None)
+        memo[key] = out
+    return memo[key]
+
+
+def _vanishes_memo(coefficients, points, memo: dict) -> bool:
+    """:func:`_vanishes`, once per coefficients (``memo`` belongs to one set of points)."""
+    key = ("vanishes", coefficients)
+    if key not in memo:
+        memo[key] = _vanishes(coefficients, points)
+    return memo[key]
+
+
+def _best(basis, remaining, points, bases, memo=None):
     """The variable with the most linear candidates, and the simplest quadratic."""
+    memo = {} if memo is None else memo
     best, quadratic = None, None
     for v in remaining:
         cands = []
         for g in (bases[v] if bases else basis):
             if not g.has(v) or (g.free_symbols & set(remaining)) - {v}:
                 continue
-            poly = sp.Poly(g, v)
-            if poly.degree() > 2:  # a factor 1 + v^2 (no real zero) or a content may hide one
-                g = _without_spurious_factors(g, v)
-                poly = sp.Poly(g, v)
-            ops = int(sp.count_ops(g))
-            if poly.degree() == 1:
-                bc = (sp.expand(poly.coeff_monomial(v)), sp.expand(poly.coeff_monomial(1)))
-                if not _vanishes(bc[:1], points):
-                    cands.append((ops, *bc))
-            elif poly.degree() == 2 and (quadratic is None or ops < quadratic[0]):
-                abc = tuple(sp.expand(poly.coeff_monomial(v**k)) for k in (2, 1, 0))
-                if not _vanishes(abc[:2], points):
-                    quadratic = (ops, v, abc)
+            ops, degree, coeffs = _candidate(g, v, memo)
+            if degree == 1:
+                if not _vanishes_memo(coeffs[:1], points, memo):
+                    cands.append((ops, *coeffs))
+            elif degree == 2 and (quadratic is None or ops < quadratic[0]):
+                if not _vanishes_memo(coeffs[:2], points, memo):
+                    quadratic = (ops, v, coeffs)
         if cands and (best is None or len(cands) > len(best[1])):
             best = (v, sorted(cands, key=lambda t: (t[0], sp.srepr(t[1]))))
     return best, quadratic

@@ -40,8 +40,9 @@ class LegIdeal:
 
     ``method`` names the solver that produced the ideal (``solvers.legs``): an elimination,
     or a certified closed form (``certificate`` says why no elimination was run).
-    ``generators`` are in ``keep``; for a mounted leg they are the eliminated frame's
-    reduced basis carried back to the platform's coordinates."""
+    ``generators`` are in ``keep``, each a sum of monomials (expanded); for a mounted leg
+    they are the eliminated frame's reduced basis carried back to the platform's
+    coordinates."""
 
     closure: Closure
     leg: Leg

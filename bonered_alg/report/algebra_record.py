@@ -33,8 +33,10 @@ def degrees(expr) -> list[tuple[sp.Symbol, int]]:
     return list(zip(free, sp.Poly(sp.expand(expr), *free).degree_list()))
 
 
-def _text(expr) -> str:
-    return str(sp.expand(expr))
+def _text(expr, expanded: bool = False) -> str:
+    """``expr`` expanded, as text; ``expanded``: it is a sum of monomials already (a leg's
+    generators, built so from the engine's terms), printed as it is."""
+    return str(expr if expanded else sp.expand(expr))
 
 
 def algebra_json(d) -> str:
@@ -44,7 +46,8 @@ def algebra_json(d) -> str:
         "derivation_hash": d.derivation_hash,
         "legs": [{"leg": r.leg.name, "closure": r.closure.name,
                   "variables": [str(v) for v in r.problem.keep],
-                  "generators": [_text(g) for g in r.generators]} for r in d.legs],
+                  "generators": [_text(g, expanded=True) for g in r.generators]}
+                 for r in d.legs],
         "ik": [{"joint": str(s.joint), "source": s.source, "degree": s.degree,
                 "A": _text(s.A), "B": _text(s.B), "C": _text(s.C)} for s in d.steps],
         "jacobians": [{"closure": v.closure,

@@ -264,7 +264,9 @@ def _distance_leg(r) -> list[str]:
     for k, e in enumerate(p.equations, 1):
         out.append(broken_math(f"e_{{{k}}}", e))
     gens = r.result.generators
-    short = [g for g in gens if len(sp.Add.make_args(sp.expand(g))) <= DISTANCE_LEG_MAX_TERMS]
+    # the generators are sums of monomials already (as_expressions): their terms are
+    # counted as they are (expanding them again took a tenth of Stewart's derivation)
+    short = [g for g in gens if len(sp.Add.make_args(g)) <= DISTANCE_LEG_MAX_TERMS]
     consts = [c for c in _constant_symbols(r) if c in p.keep]
     bound = (", with " + ", ".join(f"${latex(c)}$" for c in consts) + " as variables bound by "
              "their minimal polynomials" if consts else "")

@@ -83,24 +83,47 @@ def _gradient(expr, unknowns, vals) -> tuple[np.ndarray, float]:
     syms = sorted(expr.free_symbols, key=str)
     if not syms:
         return np.zeros(len(unknowns)), 0.0
-    poly = sp.Poly(expr, *syms)
+    try:  # a generator is a sum of monomials already: no second expansion
+        poly = sp.Poly(expr, *syms, expand=False)
+    except sp.PolynomialError:
+        poly = sp.Poly(expr, *syms)
     x = [Fraction(float(vals[s])) for s in syms]
     coeffs = [Fraction(int(c.p), int(c.q)) if c.is_Rational else Fraction(float(c))
               for c in poly.coeffs()]
     out = np.zeros(len(unknowns))
     scale = 0.0
+    monoms = poly.monoms()
+    powers: dict[tuple[int, int], Fraction] = {}
+
+    def power(v: int, p_: int) -> Fraction:
+        if (v, p_) not in powers:
+            powers[v, p_] = x[v] ** p_
+        return powers[v, p_]
+
+    # each monomial's value once; a partial is c e_i x^e / x_i where x_i != 0 (exact, as the
+    # product written out term by term)
+    values = []
+    for e, c in zip(monoms, coeffs):
+        m = c
+        for v, ev in enumerate(e):
+            if ev:
+                m *= power(v, ev)
+        values.append(m)
     for k, u in enumerate(unknowns):
         if u not in syms:
             continue
         i = syms.index(u)
         total, size = Fraction(0), Fraction(0)
-        for e, c in zip(poly.monoms(), coeffs):
+        for e, c, m in zip(monoms, coeffs, values):
             if e[i]:
-                term = c * e[i]
-                for v, (xv, ev) in enumerate(zip(x, e)):
-                    p_ = ev - 1 if v == i else ev
-                    if p_:
-                        term *= xv ** p_
+                if x[i] != 0:
+                    term = m * e[i] / x[i]
+                else:
+                    term = c * e[i]
+                    for v, ev in enumerate(e):
+                        p_ = ev - 1 if v == i else ev
+                        if p_:
+                            term *= power(v, p_)
                 total += term
                 size += abs(term)
         out[k] = float(total)
