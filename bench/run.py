@@ -21,6 +21,18 @@ import numpy as np
 import sympy as sp
 
 ROOT = Path(__file__).resolve().parents[1]
+
+# glibc's allocator without mmap for large blocks and without trimming the heap: a freed
+# array's pages are reused, not returned to the kernel and faulted in again.  On this
+# project's VM a page faulted in after the host reclaimed it costs microseconds (a fresh
+# 288 MB array: 0.4-0.8 s), which made every timing of a 10^6-pose function vary up to 2x
+# between runs, the hand-written baselines as much as the generated code.  The same
+# setting for both, so the ratios measure the code.  Set before numpy is imported: the
+# script re-executes itself with it.
+MALLOC_TUNABLES = "glibc.malloc.mmap_max=0:glibc.malloc.trim_threshold=68719476736"
+if __name__ == "__main__" and os.environ.get("GLIBC_TUNABLES") is None:
+    os.execve(sys.executable, [sys.executable, *sys.argv],
+              {**os.environ, "GLIBC_TUNABLES": MALLOC_TUNABLES})
 sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "bench"))
 
@@ -38,6 +50,19 @@ from bonered_alg.mechanisms import pro_hep_lct as phl  # noqa: E402
 from bonered_alg.pipeline.algebra import Algebra  # noqa: E402
 from bonered_alg.pipeline.runner import derive  # noqa: E402
 from bonered_alg.runtime import compiled  # noqa: E402
+
+
+def interleaved_medians(fns, repeat):
+    """Median time of each of ``fns``, timed in turn within each of ``repeat`` rounds: on a
+    shared host whose load drifts, the functions compared see the same conditions (timed in
+    separate blocks, a ratio moved by up to 30 % between runs)."""
+    times = [[] for _ in fns]
+    for _ in range(repeat):
+        for k, fn in enumerate(fns):
+            t0 = time.perf_counter()
+            fn()
+            times[k].append(time.perf_counter() - t0)
+    return [statistics.median(t) for t in times]
 
 
 def median_time(fn, repeat):
@@ -366,14 +391,10 @@ def workspace_benchmarks(n_side=160):
         g = Grid(mod.POSE, (Axis("x", -100.0, 100.0, n_side), Axis("y", -100.0, 100.0, n_side),
                             Axis("gamma", -1.0, 1.0, n_side)),
                  {"z": z, "alpha": 0.05, "beta": -0.05})
-        rates = {}
-        for workers in (1, 2):
-            times = []
-            for _ in range(3):
-                t0 = time.perf_counter()
-                res = scan(name, g, workers=workers)
-                times.append(time.perf_counter() - t0)
-            rates[workers] = g.size / statistics.median(times)
+        res = scan(name, g, workers=1)
+        t1, t2 = interleaved_medians([lambda n=name, g=g: scan(n, g, workers=1),
+                                      lambda n=name, g=g: scan(n, g, workers=2)], 5)
+        rates = {1: g.size / t1, 2: g.size / t2}
         out[name] = {"samples": g.size, "reachable": res.count,
                      "samples_per_s_1_core": rates[1], "samples_per_s_2_cores": rates[2],
                      "speedup_2_cores": rates[2] / rates[1]}
@@ -473,23 +494,25 @@ def hand_written_benchmarks(n=1_000_000):
     out = {"poses": n, "threads": compiled.threads()}
     for name, (m, poses, par, hand) in cases.items():
         row = {"poses": len(poses)}
-        t_hand = median_time(lambda h=hand: h(False), 5)
-        row["hand_written_ik_poses_per_s"] = len(poses) / t_hand
-        for label, fast in (("numpy", False), ("compiled", True)):
+        for fast in (False, True):
             m.ik(poses[:10], limits=False, fast=fast, **par)  # built before timing
-            t = median_time(lambda m=m, p=poses, k=par, f=fast: m.ik(
-                p, limits=False, fast=f, **k), 5)
+        t_hand, *t_gen = interleaved_medians(
+            [lambda h=hand: h(False)] + [lambda m=m, p=poses, k=par, f=fast: m.ik(
+                p, limits=False, fast=f, **k) for fast in (False, True)], 7)
+        row["hand_written_ik_poses_per_s"] = len(poses) / t_hand
+        for (label, fast), t in zip((("numpy", False), ("compiled", True)), t_gen):
             row[f"{label}_ik_poses_per_s"] = len(poses) / t
             row[f"{label}_ik_ratio_vs_hand_written"] = t_hand / t
             row[f"{label}_max_rel_difference_ik"] = _max_rel(
                 m.ik(poses, limits=False, fast=fast, **par), hand(False))
         if name != "tripod_planar":  # no hand-written Jacobian of 001's closed forms
-            t_hand_j = median_time(lambda h=hand: h(True), 3)
+            t_hand_j, *t_gen = interleaved_medians(
+                [lambda h=hand: h(True)] + [lambda m=m, p=poses, k=par, f=fast:
+                                            m.ik_and_jacobian(p, limits=False, fast=f, **k)
+                                            for fast in (False, True)], 5)
             row["hand_written_ik_plus_jacobian_poses_per_s"] = len(poses) / t_hand_j
             ref = hand(True)[1]
-            for label, fast in (("numpy", False), ("compiled", True)):
-                t = median_time(lambda m=m, p=poses, k=par, f=fast: m.ik_and_jacobian(
-                    p, limits=False, fast=f, **k), 3)
+            for (label, fast), t in zip((("numpy", False), ("compiled", True)), t_gen):
                 row[f"{label}_ik_plus_jacobian_poses_per_s"] = len(poses) / t
                 row[f"{label}_ik_plus_jacobian_ratio_vs_hand_written"] = t_hand_j / t
                 row[f"{label}_max_rel_difference_jacobian"] = _max_rel(
@@ -624,6 +647,16 @@ def platform_ideal(engine, budget_s):
     return [Elimination().derive(mech, closure, leg, algebra) for leg in closure.legs]
 
 
+def _cpu_model() -> str:
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor()
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
@@ -646,6 +679,7 @@ def main():
     derivation = derive("pro_hep_lct").derivation
     results = {
         "machine": {"python": platform.python_version(), "numpy": np.__version__,
+                    "cpu": _cpu_model(), "glibc_tunables": os.environ.get("GLIBC_TUNABLES"),
                     "sympy": sp.__version__, "cpus": os.cpu_count(),
                     "singular": SingularEngine().version() if SingularEngine().available()
                     else None},

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 083237c48db288dfd1e357e51f5785862a09e60a785f11c49a0830c0f63b7844
+ * Derivation hash: d116c3b013c46dd3bd5f2c4940335813498fd3eac7f2a609ae5195007fb05cdb
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "083237c48db288dfd1e357e51f5785862a09e60a785f11c49a0830c0f63b7844";
+const char bonered_derivation_hash[] = "d116c3b013c46dd3bd5f2c4940335813498fd3eac7f2a609ae5195007fb05cdb";
 int bonered_abi(void) { return 2; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 78cf6c8a1547ad04c87cc0a426f1b458bf9113cee14a8f00189813d157da1750
+ * Derivation hash: 4c8291aa876b92e244f7364f796e5eaec6ebe7c4e5815b9b707c5923c0fe5a7f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "78cf6c8a1547ad04c87cc0a426f1b458bf9113cee14a8f00189813d157da1750";
+const char bonered_derivation_hash[] = "4c8291aa876b92e244f7364f796e5eaec6ebe7c4e5815b9b707c5923c0fe5a7f";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

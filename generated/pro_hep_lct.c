@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c8377a5aaafa3a5e8da4b4aedb1b421cbd73319f06802f077d3239dfa10d49ca
+ * Derivation hash: 8a69867eb0d2d769cbcf52439d4b9abf669e861d2e4c539191f2e55c312ed0be
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c8377a5aaafa3a5e8da4b4aedb1b421cbd73319f06802f077d3239dfa10d49ca";
+const char bonered_derivation_hash[] = "8a69867eb0d2d769cbcf52439d4b9abf669e861d2e4c539191f2e55c312ed0be";
 int bonered_abi(void) { return 2; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

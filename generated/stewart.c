@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: be907c34c8cf1ea6c9f38cbf5e7cc3a84f5d5de6fec0aae7e399c17f735b1d43
+ * Derivation hash: 68936b0850f0c4b7dc346f4682daec81ae17b9e8dee8ea7dd4faed896c7eb0f3
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "be907c34c8cf1ea6c9f38cbf5e7cc3a84f5d5de6fec0aae7e399c17f735b1d43";
+const char bonered_derivation_hash[] = "68936b0850f0c4b7dc346f4682daec81ae17b9e8dee8ea7dd4faed896c7eb0f3";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 32e70ffee885144ac3f46b159b1bdb4013ed9c76049ebbc2f54ec0f2542bb819
+ * Derivation hash: c4a7951ab3a8becf07a2d6ec43e01b3ee7066df7159d30e5361bf7cd68d510a4
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "32e70ffee885144ac3f46b159b1bdb4013ed9c76049ebbc2f54ec0f2542bb819";
+const char bonered_derivation_hash[] = "c4a7951ab3a8becf07a2d6ec43e01b3ee7066df7159d30e5361bf7cd68d510a4";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8793360afb4ef97a96a1905203d62fdd3e4e607a7d13fe18ad6b2e745517b570
+ * Derivation hash: d1cec8f1c54446d17b1b1cba4c0e124687d128fab2aa04efb35b06ef80812a9f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "8793360afb4ef97a96a1905203d62fdd3e4e607a7d13fe18ad6b2e745517b570";
+const char bonered_derivation_hash[] = "d1cec8f1c54446d17b1b1cba4c0e124687d128fab2aa04efb35b06ef80812a9f";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

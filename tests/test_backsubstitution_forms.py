@@ -79,11 +79,14 @@ def test_zero_pivot_of_a_linear_step_as_the_detailed_form():
 
 
 def test_single_input_without_leading_axes():
-    for x in ([0.125, 0.5], [-1.0, 4.0], [1.0, 0.0]):
+    for x in ([0.125, 0.5], [-1.0, 4.0], [1.0, 0.0], [np.nan, 1.0]):
         inputs = np.array(x)
-        lean = backsubstitute_lean(inputs, STEPS, (0, 1, 2), 3, 0, [], True)
-        _assert_same(lean, backsubstitute_detailed(inputs, STEPS, (0, 1, 2), 3, 0, [], True))
-        assert lean[0].shape == (3,) and lean[1].shape == ()
+        for mode, with_status in ((m, w) for m in range(4) for w in (False, True)):
+            lean = backsubstitute_lean(inputs, STEPS, (0, 1, 2), 3, mode, [], with_status)
+            _assert_same(lean, backsubstitute_detailed(inputs, STEPS, (0, 1, 2), 3, mode, [],
+                                                       with_status))
+            assert lean[0].shape == (3,)
+            assert lean[1] is None if not with_status else lean[1].shape == ()
 
 
 @pytest.mark.parametrize("name", sorted(MECHANISMS))

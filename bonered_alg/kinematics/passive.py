@@ -196,20 +196,33 @@ def _candidate(g: sp.Expr, v: sp.Symbol, memo: dict):
     every round)."""
     key = (g, v)
     if key not in memo:
-        poly = sp.Poly(g, v)
-        if poly.degree() > 2:  # a factor 1 + v^2 (no real zero) or a content may hide one
+        coeffs = _coefficients_in(g, v)
+        if len(coeffs) - 1 > 2:  # a factor 1 + v^2 (no real zero) or a content may hide one
             g = _without_spurious_factors(g, v)
-            poly = sp.Poly(g, v)
+            coeffs = _coefficients_in(g, v)
+        degree = len(coeffs) - 1
         ops = int(sp.count_ops(g))
-        if poly.degree() == 1:
-            out = (ops, 1, (sp.expand(poly.coeff_monomial(v)),
-                            sp.expand(poly.coeff_monomial(1))))
-        elif poly.degree() == 2:
-            out = (ops, 2, tuple(sp.expand(poly.coeff_monomial(v**k)) for k in (2, 1, 0)))
+        if degree in (1, 2):
+            out = (ops, degree, tuple(coeffs[k] for k in range(degree, -1, -1)))
         else:
-            out = (ops, poly.degree(), None)
+            out = (ops, degree, None)
         memo[key] = out
     return memo[key]
+
+
+def _coefficients_in(g: sp.Expr, v: sp.Symbol) -> list[sp.Expr]:
+    """The coefficients of ``v^0, v^1, ...`` of the polynomial ``g``, each expanded: read
+    off the terms of a sum of monomials (a ``Poly`` in ``v`` over the other symbols took a
+    fifth of a derivation on 002's generators); through ``Poly`` for anything else."""
+    by_power: dict[int, list[sp.Expr]] = {}
+    for term in sp.Add.make_args(g):
+        c, e = term.as_coeff_exponent(v)
+        if not (e.is_Integer and e >= 0) or c.has(v):
+            poly = sp.Poly(g, v)
+            return [sp.expand(poly.coeff_monomial(v**k)) for k in range(poly.degree() + 1)]
+        by_power.setdefault(int(e), []).append(c)
+    degree = max(by_power, default=0)
+    return [sp.expand(sp.Add(*by_power.get(k, []))) for k in range(degree + 1)]
 
 
 def _vanishes_memo(coefficients, points, memo: dict) -> bool:

@@ -49,50 +49,70 @@ def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=Fa
     shape = inputs.shape[:-1]
     cols = contiguous_columns(inputs)
     out = numpy.empty((n_out,) + shape)
-    solved, bads, records = [], [], []
+    records = [] if with_status else None
     with numpy.errstate(all="ignore"):
-        for (degree, kern, bit), index in zip(steps, indices):
-            a, b, c = kern(*cols, *solved, *par)
-            if degree == 1:
-                root = -c / b
-                bad = ~numpy.isfinite(root)
-                record = ("linear", b)
-            elif numpy.ndim(b) == 0 and b == 0.0:
-                disc = 0.0 - 4.0 * a * c
-                ssq = numpy.sqrt(disc)  # NaN where disc < 0: no real root
-                root = (-ssq if (mode >> bit) & 1 else ssq) / (2.0 * a)
-                bad = ~numpy.isfinite(root)
-                record = ("pure", disc)
-            else:
-                minus = (mode >> bit) & 1  # the root with -sqrt(disc)
-                bb = b * b
-                disc = bb - 4.0 * a * c
-                ssq = numpy.sqrt(numpy.maximum(disc, 0.0))
-                if minus:  # sign * sqrt and sign * b <= 0 without multiplying by the sign
-                    ssq = -ssq
-                near = (b >= 0.0) if minus else (b <= 0.0)
-                root = numpy.where(near, (ssq - b) / (2.0 * a), (2.0 * c) / (-b - ssq))
-                bad = ~numpy.isfinite(root)
-                bad |= disc < -DISC_RTOL * bb
-                record = ("quadratic", disc, bb)
-            out[index, ...] = root
-            solved.append(root)
-            bads.append(bad)
-            if with_status:
-                records.append(record)
-        failed = numpy.zeros(shape, dtype=bool)
-        for bad in bads:
-            failed |= bad
+        good = _roots(cols, steps, indices, out, mode, par, records)
+        failed = ~good if good is not None else numpy.zeros(shape, dtype=bool)
+        status = None
+        if with_status:  # from each step's root before the rows are set to NaN
+            status = _lean_status(inputs, shape, failed, [out[i, ...] for i in indices],
+                                  records)
         if failed.any():
             out[:, failed] = numpy.nan
-        status = None
-        if with_status:
-            status = _lean_status(inputs, shape, failed, bads, records)
     return numpy.moveaxis(out, 0, -1), status
 
 
-def _lean_status(inputs, shape, failed, bads, records):
-    """The status codes of :func:`backsubstitute_lean` (its docstring says the rule)."""
+def _roots(cols, steps, indices, out, mode, par, records=None):
+    """Each step's root written into its row of ``out`` (n_out, ...) in place; True where
+    every root is finite (None without steps).  A step that fails gives NaN or infinity
+    (no real root: the discriminant set to NaN below its tolerance), and the later steps
+    take that on; the roots of valid configurations are the general rule's, operation for
+    operation.  ``records`` (a list) receives what the status needs of each step."""
+    solved = []
+    good = None
+    for (degree, kern, bit), index in zip(steps, indices):
+        a, b, c = kern(*cols, *solved, *par)
+        dest = out[index, ...]
+        if degree == 1:
+            numpy.divide(c, b, out=dest)
+            numpy.negative(dest, out=dest)  # -(c/b) is (-c)/b: negation is exact
+            record = ("linear", b)
+        elif numpy.ndim(b) == 0 and b == 0.0:
+            disc = 0.0 - 4.0 * a * c
+            ssq = numpy.sqrt(disc)  # NaN where negative: no real root
+            if (mode >> bit) & 1:
+                ssq = -ssq  # (a new value: a single pose's sqrt is a numpy scalar)
+            numpy.divide(ssq, 2.0 * a, out=dest)
+            record = ("pure", disc)
+        else:
+            minus = (mode >> bit) & 1  # the root with -sqrt(disc)
+            bb = b * b
+            disc = bb - 4.0 * a * c
+            no_real = disc < -DISC_RTOL * bb
+            ssq = numpy.sqrt(numpy.where(no_real, numpy.nan, numpy.maximum(disc, 0.0)))
+            if minus:
+                ssq = -ssq
+            # the form without cancellation: (sqrt - B) / 2A where B has the sign opposite
+            # to the root's sqrt, else 2C / (-B - sqrt)
+            numpy.divide(ssq - b, 2.0 * a, out=dest)
+            far = (b < 0.0) if minus else (b > 0.0)
+            numpy.copyto(dest, (2.0 * c) / (-b - ssq), where=far)
+            record = ("quadratic", disc, bb)
+        finite = numpy.isfinite(dest)
+        if good is None:
+            good = finite
+        else:
+            good &= finite
+        solved.append(dest)
+        if records is not None:
+            records.append(record)
+    return good
+
+
+def _lean_status(inputs, shape, failed, roots, records):
+    """The status codes of :func:`backsubstitute_lean` (its docstring says the rule), from
+    each step's ``roots`` (not finite where the step failed or an earlier one did) and its
+    ``records``."""
 
     def flat(v):
         return numpy.reshape(numpy.broadcast_to(v, shape), -1)
@@ -110,8 +130,8 @@ def _lean_status(inputs, shape, failed, bads, records):
         codes = numpy.zeros(len(idx), dtype=numpy.int8)
         decided = numpy.zeros(len(idx), dtype=bool)
         boundary = numpy.zeros(len(idx), dtype=bool)
-        for (kind, *arrays), bad in zip(records, bads):
-            bad = flat(bad)[idx]
+        for (kind, *arrays), root in zip(records, roots):
+            bad = ~numpy.isfinite(flat(root)[idx])
             sub = [flat(v)[idx] for v in arrays]
             if kind == "linear":
                 code = numpy.where(sub[0] == 0, INPUT_SINGULAR, JOINT_AT_INFINITY)

@@ -430,12 +430,13 @@ class Model:
         return self._matrices(pose, q, check.parameters(self, "output_jacobian",
                                                         params or {}))[1]
 
-    def _jac_values(self, pose, q, par, into=None):
+    def _jac_values(self, pose, q, par, into=None, row_scale=None):
         """The Jacobian kernel's outputs (pivots, row scales, dq/dX row-major), one row
         each: (outputs, ...) for poses (..., len(POSE)), evaluated JAC_CHUNK poses at a
         time (its temporaries then stay in cache).  With ``into`` (n, len(JOINTS) *
         len(POSE)), the rows of dq/dX go there directly and only the pivots and row
-        scales are returned."""
+        scales are returned; ``row_scale`` ({row of dq/dX: array (n,)}) multiplies a row's
+        entries on the way (the angle joints' dq/dt, :meth:`publish`)."""
         shape = pose.shape[:-1]
         n = int(numpy.prod(shape, dtype=numpy.int64))
         flat_pose = pose.reshape(n, pose.shape[-1])
@@ -454,6 +455,9 @@ class Model:
                     out = numpy.empty((len(values) if into is None else nps, n))
                 for k, v in enumerate(values):
                     if into is not None and k >= nps:
+                        row = (k - nps) // len(self.pose)
+                        if row_scale and row in row_scale:
+                            v = v * row_scale[row][lo:hi]
                         into[lo:hi, k - nps] = v
                     else:
                         out[k, lo:hi] = v
@@ -508,15 +512,19 @@ class Model:
         q, status = self._solve_by_columns(pose, mode, par, True, limits)
         k = pose.shape[0]
         n, m = len(self.joints), len(self.pose)
-        values = self._jac_values(pose, q, par, into=J_out.reshape(k, n * m))
+        # the angle joints' rows of dq/dX times dq/dt = 2 / (1 + t^2) as they are written
+        # (the numbers of publish(q, J), without a pass over strided rows)
+        scale = {i: 2.0 / (1.0 + q[..., i] ** 2) for i in self.angles} if public else None
+        values = self._jac_values(pose, q, par, into=J_out.reshape(k, n * m),
+                                  row_scale=scale)
         singular = self.pivot_singular(values[:n], values[n:2 * n], (k,))
         singular |= status == ON_BOUNDARY
         J_out[singular] = numpy.nan
+        if public:  # on q's rows (contiguous), before they are copied out
+            self.publish(q)
         q_out[...] = q
         ik_ok = (status == OK) | (status == ON_BOUNDARY)
         status_out[...] = numpy.where(ik_ok & singular, INPUT_SINGULAR, status)
-        if public:
-            self.publish(q_out, J_out)
 
     def singularities(self, pose, q, params=None):
         pose = check.pose(self, "singularities", pose)
