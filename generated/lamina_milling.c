@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d116c3b013c46dd3bd5f2c4940335813498fd3eac7f2a609ae5195007fb05cdb
+ * Derivation hash: c78610f1e46a66b5eb414ab695a7e7eb937c662049498a68a6a9b4e4f165c4b0
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "d116c3b013c46dd3bd5f2c4940335813498fd3eac7f2a609ae5195007fb05cdb";
+const char bonered_derivation_hash[] = "c78610f1e46a66b5eb414ab695a7e7eb937c662049498a68a6a9b4e4f165c4b0";
 int bonered_abi(void) { return 2; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

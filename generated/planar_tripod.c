@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4c8291aa876b92e244f7364f796e5eaec6ebe7c4e5815b9b707c5923c0fe5a7f
+ * Derivation hash: 3b221624d5117bc24387faff46c20590e4bc694191f6e41c2e0d470fde86b5c8
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "4c8291aa876b92e244f7364f796e5eaec6ebe7c4e5815b9b707c5923c0fe5a7f";
+const char bonered_derivation_hash[] = "3b221624d5117bc24387faff46c20590e4bc694191f6e41c2e0d470fde86b5c8";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

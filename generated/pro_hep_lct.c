@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8a69867eb0d2d769cbcf52439d4b9abf669e861d2e4c539191f2e55c312ed0be
+ * Derivation hash: dde9aa77995d69f5104813728c401722ce75e45130356d6fdf632037b7fb47c1
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "8a69867eb0d2d769cbcf52439d4b9abf669e861d2e4c539191f2e55c312ed0be";
+const char bonered_derivation_hash[] = "dde9aa77995d69f5104813728c401722ce75e45130356d6fdf632037b7fb47c1";
 int bonered_abi(void) { return 2; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

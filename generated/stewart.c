@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 68936b0850f0c4b7dc346f4682daec81ae17b9e8dee8ea7dd4faed896c7eb0f3
+ * Derivation hash: 34d5574f189b093e9ed53db60b3db9a30513f2b01e804c78c5597fa776aaf965
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "68936b0850f0c4b7dc346f4682daec81ae17b9e8dee8ea7dd4faed896c7eb0f3";
+const char bonered_derivation_hash[] = "34d5574f189b093e9ed53db60b3db9a30513f2b01e804c78c5597fa776aaf965";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

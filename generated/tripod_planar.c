@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c4a7951ab3a8becf07a2d6ec43e01b3ee7066df7159d30e5361bf7cd68d510a4
+ * Derivation hash: f1efb3ee5c58be49f13b2852c97ace3ffa33d71922732223f9a782ea49cd6b55
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c4a7951ab3a8becf07a2d6ec43e01b3ee7066df7159d30e5361bf7cd68d510a4";
+const char bonered_derivation_hash[] = "f1efb3ee5c58be49f13b2852c97ace3ffa33d71922732223f9a782ea49cd6b55";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

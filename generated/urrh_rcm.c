@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d1cec8f1c54446d17b1b1cba4c0e124687d128fab2aa04efb35b06ef80812a9f
+ * Derivation hash: 810e6fcdbbce64b83d9f2e0f4888fc1cfde81ccc902f8a02abed6c3b9c4af0f5
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "d1cec8f1c54446d17b1b1cba4c0e124687d128fab2aa04efb35b06ef80812a9f";
+const char bonered_derivation_hash[] = "810e6fcdbbce64b83d9f2e0f4888fc1cfde81ccc902f8a02abed6c3b9c4af0f5";
 int bonered_abi(void) { return 2; }
 
 /* Elementary functions of the pose that several stages take. */

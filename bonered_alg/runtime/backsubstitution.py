@@ -85,18 +85,22 @@ def _roots(cols, steps, indices, out, mode, par, records=None):
             numpy.divide(ssq, 2.0 * a, out=dest)
             record = ("pure", disc)
         else:
-            minus = (mode >> bit) & 1  # the root with -sqrt(disc)
             bb = b * b
             disc = bb - 4.0 * a * c
             no_real = disc < -DISC_RTOL * bb
-            ssq = numpy.sqrt(numpy.where(no_real, numpy.nan, numpy.maximum(disc, 0.0)))
-            if minus:
-                ssq = -ssq
-            # the form without cancellation: (sqrt - B) / 2A where B has the sign opposite
-            # to the root's sqrt, else 2C / (-B - sqrt)
-            numpy.divide(ssq - b, 2.0 * a, out=dest)
-            far = (b < 0.0) if minus else (b > 0.0)
-            numpy.copyto(dest, (2.0 * c) / (-b - ssq), where=far)
+            # sqrt(max(disc, 0)), NaN where no real root: there max(disc, 0) is 0, and
+            # subtracting True makes it -1 (numpy.where and masked copies cost several
+            # arithmetic passes each)
+            ssq = numpy.maximum(disc, 0.0) - no_real
+            # s = |B| + sqrt(disc) never cancels: the root with +sqrt is s / 2A where
+            # B <= 0 and 2C / -s where B > 0; the one with -sqrt, -s / 2A where B >= 0 and
+            # 2C / s where B < 0 -- the detailed form's (+-sqrt - B) / 2A and
+            # 2C / (-B -+ sqrt), the same numbers (a zero root may differ in its sign)
+            s = numpy.abs(b) + numpy.sqrt(ssq)
+            if (mode >> bit) & 1:
+                dest[...] = numpy.where(b < 0.0, (2.0 * c) / s, numpy.negative(s) / (2.0 * a))
+            else:
+                dest[...] = numpy.where(b > 0.0, (2.0 * c) / numpy.negative(s), s / (2.0 * a))
             record = ("quadratic", disc, bb)
         finite = numpy.isfinite(dest)
         if good is None:
