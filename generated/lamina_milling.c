@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c78610f1e46a66b5eb414ab695a7e7eb937c662049498a68a6a9b4e4f165c4b0
+ * Derivation hash: 909b2ebbddc2a2bc998a993460f42052d91537015d4972cfe1a8fa0f10e78b07
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c78610f1e46a66b5eb414ab695a7e7eb937c662049498a68a6a9b4e4f165c4b0";
-int bonered_abi(void) { return 2; }
+const char bonered_derivation_hash[] = "909b2ebbddc2a2bc998a993460f42052d91537015d4972cfe1a8fa0f10e78b07";
+int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
 BF_INLINE void _study(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
@@ -109,7 +109,8 @@ BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1,
 
 static void solve_block(int m, const double *restrict pose, const double *restrict par,
                         int mode, int limits, double *restrict q_out,
-                        signed char *restrict status_out, double *restrict jac_out)
+                        signed char *restrict status_out, double *restrict jac_out,
+                        int stream, int public)
 {
     double P[3][BF_BLOCK], S[3][BF_BLOCK], R[3][BF_BLOCK], Q[3][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
@@ -178,9 +179,28 @@ static void solve_block(int m, const double *restrict pose, const double *restri
             J[8][i] = singular ? NAN : v[14];
             ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
         }
+        if (public) {  /* the angle joints' rows times dq/dt = 2 / (1 + t^2) */
+            for (int i = 0; i < m; i++) {
+                double d1 = 2.0 / (1.0 + Q[1][i] * Q[1][i]);
+                J[3][i] *= d1;
+                J[4][i] *= d1;
+                J[5][i] *= d1;
+                double d2 = 2.0 / (1.0 + Q[2][i] * Q[2][i]);
+                J[6][i] *= d2;
+                J[7][i] *= d2;
+                J[8][i] *= d2;
+            }
+        }
+        (void)stream;
         for (int i = 0; i < m; i++)
             for (int k = 0; k < 9; k++)
                 jac_out[i * 9 + k] = J[k][i];
+    }
+    if (public) {  /* the angle joints as angles, q = 2 atan(t) */
+        for (int i = 0; i < m; i++) {
+            Q[1][i] = 2.0 * atan(Q[1][i]);
+            Q[2][i] = 2.0 * atan(Q[2][i]);
+        }
     }
     for (int i = 0; i < m; i++) {
         q_out[i * 3 + 0] = Q[0][i];
@@ -191,18 +211,22 @@ static void solve_block(int m, const double *restrict pose, const double *restri
 }
 
 /* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x
- * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */
+ * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order);
+ * public: the angle joints (JOINT_ANGLES) as angles, else as tan-half-angles */
 void bonered_solve(long n, const double *pose, const double *par_in, int mode,
-                   int limits, double *q, signed char *status, double *jac)
+                   int limits, double *q, signed char *status, double *jac, int public)
 {
     double par[21];
     for (int k = 0; k < 21; k++)
         par[k] = par_in[k];
+    /* a Jacobian too large for the cache: streamed (bonered_fast.h) */
+    int stream = jac && n * (long)sizeof(double) * 9 >= BF_STREAM_BYTES;
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
         int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
         solve_block(m, pose + lo * 3, par, mode, limits, q + lo * 3,
-                    status + lo, jac ? jac + lo * 9 : 0);
+                    status + lo, jac ? jac + lo * 9 : 0, stream, public);
     }
+    bf_stream_done(stream);
 }
 
 /* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
@@ -243,7 +267,7 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
             }
         }
         for (int k = 0; k < nmodes; k++) {
-            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            solve_block(m, pose, par, modes[k], 1, q, st, 0, 0, 0);
             for (int i = 0; i < m; i++)
                 code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
         }

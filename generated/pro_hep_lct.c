@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dde9aa77995d69f5104813728c401722ce75e45130356d6fdf632037b7fb47c1
+ * Derivation hash: 30e1fac52a5a7922b00e7c1cc8dc84eb2b074b8f5d67c7042ff6eed6aa434958
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "dde9aa77995d69f5104813728c401722ce75e45130356d6fdf632037b7fb47c1";
-int bonered_abi(void) { return 2; }
+const char bonered_derivation_hash[] = "30e1fac52a5a7922b00e7c1cc8dc84eb2b074b8f5d67c7042ff6eed6aa434958";
+int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
 BF_INLINE void _study(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
@@ -139,7 +139,8 @@ BF_INLINE void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v
 
 static void solve_block(int m, const double *restrict pose, const double *restrict par,
                         int mode, int limits, double *restrict q_out,
-                        signed char *restrict status_out, double *restrict jac_out)
+                        signed char *restrict status_out, double *restrict jac_out,
+                        int stream, int public)
 {
     double P[4][BF_BLOCK], S[4][BF_BLOCK], R[4][BF_BLOCK], Q[4][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
@@ -226,10 +227,18 @@ static void solve_block(int m, const double *restrict pose, const double *restri
             J[15][i] = singular ? NAN : v[23];
             ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
         }
+#ifdef BF_HAVE_STREAM
+        if (stream && !((uintptr_t)jac_out & 15)) {  /* pairs, non-temporal */
+            for (int i = 0; i < m; i++)
+                for (int k = 0; k < 16; k += 2)
+                    _mm_stream_pd(jac_out + i * 16 + k, _mm_set_pd(J[k + 1][i], J[k][i]));
+        } else
+#endif
         for (int i = 0; i < m; i++)
             for (int k = 0; k < 16; k++)
                 jac_out[i * 16 + k] = J[k][i];
     }
+    (void)public;
     for (int i = 0; i < m; i++) {
         q_out[i * 4 + 0] = Q[0][i];
         q_out[i * 4 + 1] = Q[1][i];
@@ -240,18 +249,22 @@ static void solve_block(int m, const double *restrict pose, const double *restri
 }
 
 /* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x
- * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */
+ * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order);
+ * public: the angle joints (JOINT_ANGLES) as angles, else as tan-half-angles */
 void bonered_solve(long n, const double *pose, const double *par_in, int mode,
-                   int limits, double *q, signed char *status, double *jac)
+                   int limits, double *q, signed char *status, double *jac, int public)
 {
     double par[11];
     for (int k = 0; k < 11; k++)
         par[k] = par_in[k];
+    /* a Jacobian too large for the cache: streamed (bonered_fast.h) */
+    int stream = jac && n * (long)sizeof(double) * 16 >= BF_STREAM_BYTES;
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
         int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
         solve_block(m, pose + lo * 4, par, mode, limits, q + lo * 4,
-                    status + lo, jac ? jac + lo * 16 : 0);
+                    status + lo, jac ? jac + lo * 16 : 0, stream, public);
     }
+    bf_stream_done(stream);
 }
 
 /* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
@@ -292,7 +305,7 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
             }
         }
         for (int k = 0; k < nmodes; k++) {
-            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            solve_block(m, pose, par, modes[k], 1, q, st, 0, 0, 0);
             for (int i = 0; i < m; i++)
                 code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
         }

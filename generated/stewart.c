@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 34d5574f189b093e9ed53db60b3db9a30513f2b01e804c78c5597fa776aaf965
+ * Derivation hash: 6b10dd2f68bfa553ef58116b81735cc2bd4364bc246169dc6d3ee4a21f277023
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "34d5574f189b093e9ed53db60b3db9a30513f2b01e804c78c5597fa776aaf965";
-int bonered_abi(void) { return 2; }
+const char bonered_derivation_hash[] = "6b10dd2f68bfa553ef58116b81735cc2bd4364bc246169dc6d3ee4a21f277023";
+int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */
 BF_INLINE void _shared(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_ta, double v_tb, double *restrict out)
@@ -884,7 +884,8 @@ BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha,
 
 static void solve_block(int m, const double *restrict pose, const double *restrict par,
                         int mode, int limits, double *restrict q_out,
-                        signed char *restrict status_out, double *restrict jac_out)
+                        signed char *restrict status_out, double *restrict jac_out,
+                        int stream, int public)
 {
     double P[6][BF_BLOCK], S[7][BF_BLOCK], R[6][BF_BLOCK], Q[6][BF_BLOCK];
     double F[3][BF_BLOCK];
@@ -1057,10 +1058,18 @@ static void solve_block(int m, const double *restrict pose, const double *restri
             J[35][i] = singular ? NAN : v[47];
             ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
         }
+#ifdef BF_HAVE_STREAM
+        if (stream && !((uintptr_t)jac_out & 15)) {  /* pairs, non-temporal */
+            for (int i = 0; i < m; i++)
+                for (int k = 0; k < 36; k += 2)
+                    _mm_stream_pd(jac_out + i * 36 + k, _mm_set_pd(J[k + 1][i], J[k][i]));
+        } else
+#endif
         for (int i = 0; i < m; i++)
             for (int k = 0; k < 36; k++)
                 jac_out[i * 36 + k] = J[k][i];
     }
+    (void)public;
     for (int i = 0; i < m; i++) {
         q_out[i * 6 + 0] = Q[0][i];
         q_out[i * 6 + 1] = Q[1][i];
@@ -1073,18 +1082,22 @@ static void solve_block(int m, const double *restrict pose, const double *restri
 }
 
 /* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x
- * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */
+ * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order);
+ * public: the angle joints (JOINT_ANGLES) as angles, else as tan-half-angles */
 void bonered_solve(long n, const double *pose, const double *par_in, int mode,
-                   int limits, double *q, signed char *status, double *jac)
+                   int limits, double *q, signed char *status, double *jac, int public)
 {
     double par[4];
     for (int k = 0; k < 4; k++)
         par[k] = par_in[k];
+    /* a Jacobian too large for the cache: streamed (bonered_fast.h) */
+    int stream = jac && n * (long)sizeof(double) * 36 >= BF_STREAM_BYTES;
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
         int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
         solve_block(m, pose + lo * 6, par, mode, limits, q + lo * 6,
-                    status + lo, jac ? jac + lo * 36 : 0);
+                    status + lo, jac ? jac + lo * 36 : 0, stream, public);
     }
+    bf_stream_done(stream);
 }
 
 /* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
@@ -1125,7 +1138,7 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
             }
         }
         for (int k = 0; k < nmodes; k++) {
-            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            solve_block(m, pose, par, modes[k], 1, q, st, 0, 0, 0);
             for (int i = 0; i < m; i++)
                 code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
         }

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 810e6fcdbbce64b83d9f2e0f4888fc1cfde81ccc902f8a02abed6c3b9c4af0f5
+ * Derivation hash: 996b0aaf1187184376204b6101c8916fc1b91a1ed22f2cf6a10c06a9e6a26991
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "810e6fcdbbce64b83d9f2e0f4888fc1cfde81ccc902f8a02abed6c3b9c4af0f5";
-int bonered_abi(void) { return 2; }
+const char bonered_derivation_hash[] = "996b0aaf1187184376204b6101c8916fc1b91a1ed22f2cf6a10c06a9e6a26991";
+int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */
 BF_INLINE void _shared(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
@@ -279,7 +279,8 @@ BF_INLINE void _limit_values(double v_theta1, double v_theta2, double v_d, doubl
 
 static void solve_block(int m, const double *restrict pose, const double *restrict par,
                         int mode, int limits, double *restrict q_out,
-                        signed char *restrict status_out, double *restrict jac_out)
+                        signed char *restrict status_out, double *restrict jac_out,
+                        int stream, int public)
 {
     double P[4][BF_BLOCK], S[4][BF_BLOCK], R[4][BF_BLOCK], Q[4][BF_BLOCK];
     double F[2][BF_BLOCK];
@@ -390,9 +391,48 @@ static void solve_block(int m, const double *restrict pose, const double *restri
             J[15][i] = singular ? NAN : v[23];
             ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
         }
+        if (public) {  /* the angle joints' rows times dq/dt = 2 / (1 + t^2) */
+            for (int i = 0; i < m; i++) {
+                double d0 = 2.0 / (1.0 + Q[0][i] * Q[0][i]);
+                J[0][i] *= d0;
+                J[1][i] *= d0;
+                J[2][i] *= d0;
+                J[3][i] *= d0;
+                double d1 = 2.0 / (1.0 + Q[1][i] * Q[1][i]);
+                J[4][i] *= d1;
+                J[5][i] *= d1;
+                J[6][i] *= d1;
+                J[7][i] *= d1;
+                double d2 = 2.0 / (1.0 + Q[2][i] * Q[2][i]);
+                J[8][i] *= d2;
+                J[9][i] *= d2;
+                J[10][i] *= d2;
+                J[11][i] *= d2;
+                double d3 = 2.0 / (1.0 + Q[3][i] * Q[3][i]);
+                J[12][i] *= d3;
+                J[13][i] *= d3;
+                J[14][i] *= d3;
+                J[15][i] *= d3;
+            }
+        }
+#ifdef BF_HAVE_STREAM
+        if (stream && !((uintptr_t)jac_out & 15)) {  /* pairs, non-temporal */
+            for (int i = 0; i < m; i++)
+                for (int k = 0; k < 16; k += 2)
+                    _mm_stream_pd(jac_out + i * 16 + k, _mm_set_pd(J[k + 1][i], J[k][i]));
+        } else
+#endif
         for (int i = 0; i < m; i++)
             for (int k = 0; k < 16; k++)
                 jac_out[i * 16 + k] = J[k][i];
+    }
+    if (public) {  /* the angle joints as angles, q = 2 atan(t) */
+        for (int i = 0; i < m; i++) {
+            Q[0][i] = 2.0 * atan(Q[0][i]);
+            Q[1][i] = 2.0 * atan(Q[1][i]);
+            Q[2][i] = 2.0 * atan(Q[2][i]);
+            Q[3][i] = 2.0 * atan(Q[3][i]);
+        }
     }
     for (int i = 0; i < m; i++) {
         q_out[i * 4 + 0] = Q[0][i];
@@ -404,18 +444,22 @@ static void solve_block(int m, const double *restrict pose, const double *restri
 }
 
 /* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x
- * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */
+ * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order);
+ * public: the angle joints (JOINT_ANGLES) as angles, else as tan-half-angles */
 void bonered_solve(long n, const double *pose, const double *par_in, int mode,
-                   int limits, double *q, signed char *status, double *jac)
+                   int limits, double *q, signed char *status, double *jac, int public)
 {
     double par[11];
     for (int k = 0; k < 11; k++)
         par[k] = par_in[k];
+    /* a Jacobian too large for the cache: streamed (bonered_fast.h) */
+    int stream = jac && n * (long)sizeof(double) * 16 >= BF_STREAM_BYTES;
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
         int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
         solve_block(m, pose + lo * 4, par, mode, limits, q + lo * 4,
-                    status + lo, jac ? jac + lo * 16 : 0);
+                    status + lo, jac ? jac + lo * 16 : 0, stream, public);
     }
+    bf_stream_done(stream);
 }
 
 /* Samples [start, stop) of a grid in C order: axis a (of naxes) has shape[a] values
@@ -456,7 +500,7 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
             }
         }
         for (int k = 0; k < nmodes; k++) {
-            solve_block(m, pose, par, modes[k], 1, q, st, 0);
+            solve_block(m, pose, par, modes[k], 1, q, st, 0, 0, 0);
             for (int i = 0; i < m; i++)
                 code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
         }

@@ -19,7 +19,7 @@ import sympy as sp
 from .kernels import Kernel, c_function, c_values, shareable_functions
 
 # the C entry point's contract with bonered_alg.runtime.compiled
-C_ABI = 2
+C_ABI = 3
 
 
 def _c_float(value: float) -> str:
@@ -51,8 +51,14 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
              study_pose: Sequence[str], joints: Sequence[str], parameters: Sequence[str],
              study: Kernel, steps: Sequence[tuple[int, Kernel, int | None]],
              solve_index: Sequence[int], pivots: Kernel | None, jac: Kernel,
-             limits_kernel: Kernel | None, limits: Sequence[tuple[float, float, str]]) -> str:
+             limits_kernel: Kernel | None, limits: Sequence[tuple[float, float, str]],
+             angles: Sequence[int] = ()) -> str:
     """Source of ``generated/<name>.c`` (deterministic for equal inputs).
+
+    ``angles``: the joints the user gets as angles ``q = 2 atan(t)`` of the algebra's
+    tan-half-angles ``t`` (``JOINT_ANGLES``); with ``public`` set, ``bonered_solve`` returns
+    them so, and their rows of dq/dX times ``dq/dt = 2 / (1 + t^2)``, as
+    ``Model.publish`` converts the numpy runtime's.
 
     An elementary function of the pose that several stages take (tan(alpha/2) in the Study
     map, the Jacobian and the limits) is computed once per pose, in a stage of its own
@@ -118,7 +124,8 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
     body = [
         "static void solve_block(int m, const double *restrict pose, const double *restrict par,",
         "                        int mode, int limits, double *restrict q_out,",
-        "                        signed char *restrict status_out, double *restrict jac_out)",
+        "                        signed char *restrict status_out, double *restrict jac_out,",
+        "                        int stream, int public)",
         "{",
         f"    double P[{npose}][BF_BLOCK], S[{nstudy}][BF_BLOCK], "
         f"R[{max(nsteps, 1)}][BF_BLOCK], Q[{nj}][BF_BLOCK];",
@@ -219,10 +226,34 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY))"
         " & singular, BF_INPUT_SINGULAR);",
         "        }",
+        *([
+            "        if (public) {  /* the angle joints' rows times dq/dt = 2 / (1 + t^2) */",
+            "            for (int i = 0; i < m; i++) {",
+            *[line for a in angles for line in (
+                f"                double d{a} = 2.0 / (1.0 + {Q[a]} * {Q[a]});",
+                *[f"                J[{a * npose + c}][i] *= d{a};" for c in range(npose)])],
+            "            }",
+            "        }"] if angles else []),
+        *([
+            "#ifdef BF_HAVE_STREAM",
+            "        if (stream && !((uintptr_t)jac_out & 15)) {  /* pairs, non-temporal */",
+            "            for (int i = 0; i < m; i++)",
+            f"                for (int k = 0; k < {nj_entries}; k += 2)",
+            f"                    _mm_stream_pd(jac_out + i * {nj_entries} + k,"
+            " _mm_set_pd(J[k + 1][i], J[k][i]));",
+            "        } else",
+            "#endif",
+        ] if nj_entries % 2 == 0 else ["        (void)stream;"]),
         "        for (int i = 0; i < m; i++)",
         f"            for (int k = 0; k < {nj_entries}; k++)",
         f"                jac_out[i * {nj_entries} + k] = J[k][i];",
         "    }",
+        *([
+            "    if (public) {  /* the angle joints as angles, q = 2 atan(t) */",
+            "        for (int i = 0; i < m; i++) {",
+            *[f"            {Q[a]} = 2.0 * atan({Q[a]});" for a in angles],
+            "        }",
+            "    }"] if angles else ["    (void)public;"]),
         "    for (int i = 0; i < m; i++) {",
         *[f"        q_out[i * {nj} + {j}] = {Q[j]};" for j in range(nj)],
         "        status_out[i] = (signed char)ST[i];",
@@ -230,18 +261,22 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "}",
         "",
         "/* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x",
-        " * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order) */",
+        " * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order);",
+        " * public: the angle joints (JOINT_ANGLES) as angles, else as tan-half-angles */",
         "void bonered_solve(long n, const double *pose, const double *par_in, int mode,",
-        "                   int limits, double *q, signed char *status, double *jac)",
+        "                   int limits, double *q, signed char *status, double *jac, int public)",
         "{",
         f"    double par[{max(npar, 1)}];",
         f"    for (int k = 0; k < {npar}; k++)",
         "        par[k] = par_in[k];",
+        "    /* a Jacobian too large for the cache: streamed (bonered_fast.h) */",
+        f"    int stream = jac && n * (long)sizeof(double) * {nj_entries} >= BF_STREAM_BYTES;",
         "    for (long lo = 0; lo < n; lo += BF_BLOCK) {",
         "        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;",
         f"        solve_block(m, pose + lo * {npose}, par, mode, limits, q + lo * {nj},",
-        f"                    status + lo, jac ? jac + lo * {nj_entries} : 0);",
+        f"                    status + lo, jac ? jac + lo * {nj_entries} : 0, stream, public);",
         "    }",
+        "    bf_stream_done(stream);",
         "}",
         "",
         *_scan_entry(npose, nj, npar),
@@ -299,7 +334,7 @@ def _scan_entry(npose: int, nj: int, npar: int) -> list[str]:
         "            }",
         "        }",
         "        for (int k = 0; k < nmodes; k++) {",
-        "            solve_block(m, pose, par, modes[k], 1, q, st, 0);",
+        "            solve_block(m, pose, par, modes[k], 1, q, st, 0, 0, 0);",
         "            for (int i = 0; i < m; i++)",
         "                code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];",
         "        }",

@@ -447,7 +447,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
             spec.steps, step_kernels, _bits(spec.steps))],
         solve_index=context["solve_index"], pivots=by_name.get("_pivots"),
         jac=by_name["_jac"], limits_kernel=by_name.get("_limit_values"),
-        limits=[(float(lim[2]), float(lim[3]), lim[4]) for lim in spec.limits])
+        limits=[(float(lim[2]), float(lim[3]), lim[4]) for lim in spec.limits],
+        angles=context["joint_angles"])
     return (render("module.py.j2", context), {k.name: k.operations for k in kernels},
             c_source)
 

@@ -39,12 +39,9 @@ import numpy
 FLAGS = ("-O3", "-fPIC", "-shared", "-ffp-contract=off", "-fno-math-errno",
          "-fno-trapping-math", "-fopenmp-simd", "-std=c99")
 HEADER_DIR = Path(__file__).resolve().parent / "c"
-C_ABI = 2
+C_ABI = 3
 # poses per thread below which one thread does the whole batch
 MIN_PER_THREAD = 20_000
-# poses per compiled call where the results are converted afterwards (``solve``'s ``post``):
-# the block is still in cache when the conversion reads it
-POST_BLOCK = 8192
 
 _lock = threading.Lock()
 _pool: ThreadPoolExecutor | None = None
@@ -197,7 +194,8 @@ class FastPath:
         fn = handle.bonered_solve
         fn.restype = None
         fn.argtypes = [ctypes.c_long, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int,
-                       ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
+                       ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
+                       ctypes.c_int]
         fn = handle.bonered_scan
         fn.restype = ctypes.c_long
         fn.argtypes = [ctypes.c_long, ctypes.c_long, ctypes.c_int, *[ctypes.c_void_p] * 5,
@@ -206,11 +204,11 @@ class FastPath:
 
     # ------------------------------------------------------------ calling
     def solve(self, pose: numpy.ndarray, par, mode: int, limits: bool, jacobian: bool,
-              post=None):
+              public: bool = False):
         """IK (and dq/dX) of poses (..., n_pose) with scalar parameters: (q, status, J or
-        None), shapes as the numpy runtime returns them.  ``post(q, J)``, where given, is
-        called in place on each block of POST_BLOCK poses just computed (in cache): the
-        conversion to the user's units."""
+        None), shapes as the numpy runtime returns them; with ``public``, the angle joints
+        as angles and their rows of dq/dX in radians (``Model.publish``'s conversion, done
+        in C), else the algebra's tan-half-angles."""
         lib = self.library()
         shape = pose.shape[:-1]
         n = int(numpy.prod(shape, dtype=numpy.int64))
@@ -221,15 +219,10 @@ class FastPath:
         jac = numpy.empty((n, self.n_joints, self.n_pose)) if jacobian else None
 
         def run(lo: int, hi: int) -> None:
-            step = max(1, hi - lo) if post is None else POST_BLOCK
-            for a in range(lo, hi, step):
-                b = min(hi, a + step)
-                lib.bonered_solve(
-                    b - a, flat[a:].ctypes.data, parv.ctypes.data, int(mode),
-                    int(bool(limits)), q[a:].ctypes.data, status[a:].ctypes.data,
-                    jac[a:].ctypes.data if jacobian else None)
-                if post is not None:
-                    post(q[a:b], None if jac is None else jac[a:b])
+            lib.bonered_solve(
+                hi - lo, flat[lo:].ctypes.data, parv.ctypes.data, int(mode),
+                int(bool(limits)), q[lo:].ctypes.data, status[lo:].ctypes.data,
+                jac[lo:].ctypes.data if jacobian else None, int(bool(public)))
 
         k = min(threads(), max(1, n // MIN_PER_THREAD))
         if k == 1:

@@ -190,8 +190,7 @@ class Model:
         ``public``: the joints in the user's units (:meth:`publish`), else the algebra's."""
         compiled = self._fast_path(func, fast, par)
         if compiled is not None:
-            q, status, _ = compiled.solve(pose, par, mode, limits, False,
-                                          self.publish if public else None)
+            q, status, _ = compiled.solve(pose, par, mode, limits, False, public)
             return q, (status if with_status else None)
         return _chunked(pose, par, lambda p, pr: self._solve(p, mode, pr, with_status,
                                                              limits, public))
@@ -496,8 +495,7 @@ class Model:
         (t = tan(q/2) for angle joints)."""
         compiled = self._fast_path(func, fast, par)
         if compiled is not None:
-            q, status, J = compiled.solve(pose, par, mode, limits, True,
-                                          self.publish if public else None)
+            q, status, J = compiled.solve(pose, par, mode, limits, True, public)
             return q, J, status
         n, m = len(self.joints), len(self.pose)
         return _chunked_into(pose, par, (((n,), float), ((n, m), float), ((), numpy.int8)),
