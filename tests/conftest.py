@@ -38,13 +38,15 @@ def symbolic_of(name: str):
         from bonered_alg.pipeline.algebra import Algebra
         from bonered_alg.pipeline.results import Derivation
         from bonered_alg.pipeline.runner import current_hash
+        from bonered_alg.pipeline.seeding import seeded_sympy_random
         from bonered_alg.registry import load
 
         algebra = Algebra.default(None)
-        d = Derivation(stages.build(load(name)), current_hash(name))
-        for stage in (stages.eliminate, stages.plan, stages.analyse):
-            d = stage(d, algebra)
-        _SYMBOLIC[name] = stages.specify(d)
+        with seeded_sympy_random():  # as derive() does: the same factoring work every run
+            d = Derivation(stages.build(load(name)), current_hash(name))
+            for stage in (stages.eliminate, stages.plan, stages.analyse):
+                d = stage(d, algebra)
+            _SYMBOLIC[name] = stages.specify(d)
     return _SYMBOLIC[name]
 
 

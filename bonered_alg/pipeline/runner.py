@@ -17,6 +17,7 @@ from . import outputs, stages, toolchain
 from .algebra import Algebra
 from .provenance import derivation_hash
 from .results import Derivation, Record, frozen_map
+from .seeding import seeded_sympy_random
 
 
 def current_hash(target: str | ModuleType) -> str:
@@ -32,7 +33,13 @@ def derive(target: str | ModuleType, engine: Engine | None = None,
            budget_s: float = DEFAULT_BUDGET_S, use_cache: bool = True,
            algebra: Algebra | None = None, progress=None) -> Record:
     """Every stage for one mechanism (registered name, or a declaration module), in memory;
-    ``progress`` (e.g. ``print``) is told each stage and its time as it ends."""
+    ``progress`` (e.g. ``print``) is told each stage and its time as it ends.  sympy's
+    random numbers are seeded for the derivation (:mod:`.seeding`)."""
+    with seeded_sympy_random():
+        return _derive(target, engine, budget_s, use_cache, algebra, progress)
+
+
+def _derive(target, engine, budget_s, use_cache, algebra, progress) -> Record:
     t0 = time.perf_counter()
     module = load(target) if isinstance(target, str) else target
     mech = stages.build(module)
