@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 909b2ebbddc2a2bc998a993460f42052d91537015d4972cfe1a8fa0f10e78b07
+ * Derivation hash: fad43362a93a7b1ab287a8d672613ab8d85067e4e239b8c43ad20e6e1d2424a5
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "909b2ebbddc2a2bc998a993460f42052d91537015d4972cfe1a8fa0f10e78b07";
+const char bonered_derivation_hash[] = "fad43362a93a7b1ab287a8d672613ab8d85067e4e239b8c43ad20e6e1d2424a5";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4e9531a722ae65548a8dd72d41bb1a57edc75f44320843c40aa33d6d6f6a7bdb
+ * Derivation hash: fea6b5b54c344d4917dbe81c6d93e4bee55d53864df203eb75d657b002a0ac55
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "4e9531a722ae65548a8dd72d41bb1a57edc75f44320843c40aa33d6d6f6a7bdb";
+const char bonered_derivation_hash[] = "fea6b5b54c344d4917dbe81c6d93e4bee55d53864df203eb75d657b002a0ac55";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

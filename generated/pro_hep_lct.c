@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 30e1fac52a5a7922b00e7c1cc8dc84eb2b074b8f5d67c7042ff6eed6aa434958
+ * Derivation hash: abd3625ec52293b0e4c4656364c166b5e98bbbd7d61bcbf2d123a04e38e2ae5a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "30e1fac52a5a7922b00e7c1cc8dc84eb2b074b8f5d67c7042ff6eed6aa434958";
+const char bonered_derivation_hash[] = "abd3625ec52293b0e4c4656364c166b5e98bbbd7d61bcbf2d123a04e38e2ae5a";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

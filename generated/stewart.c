@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6b10dd2f68bfa553ef58116b81735cc2bd4364bc246169dc6d3ee4a21f277023
+ * Derivation hash: e7095450e28223a7574127d77594ebcb22e330ff6b18b6cd9e4d139d9aa29df5
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "6b10dd2f68bfa553ef58116b81735cc2bd4364bc246169dc6d3ee4a21f277023";
+const char bonered_derivation_hash[] = "e7095450e28223a7574127d77594ebcb22e330ff6b18b6cd9e4d139d9aa29df5";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: bb85f6bcf0990bc0ff55b6d0f36cc32f4d3c70a17cc1c67c3baefa426215a39a
+ * Derivation hash: caacf27cfa662e4bccf9db2c64122285567b3dd53f68c8fdfe0a9c8b267280e4
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "bb85f6bcf0990bc0ff55b6d0f36cc32f4d3c70a17cc1c67c3baefa426215a39a";
+const char bonered_derivation_hash[] = "caacf27cfa662e4bccf9db2c64122285567b3dd53f68c8fdfe0a9c8b267280e4";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

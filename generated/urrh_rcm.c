@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 996b0aaf1187184376204b6101c8916fc1b91a1ed22f2cf6a10c06a9e6a26991
+ * Derivation hash: 2b323be7716034f3e7a8ec686c7370b8352c01b1e3a567f52737cb7aff65d945
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "996b0aaf1187184376204b6101c8916fc1b91a1ed22f2cf6a10c06a9e6a26991";
+const char bonered_derivation_hash[] = "2b323be7716034f3e7a8ec686c7370b8352c01b1e3a567f52737cb7aff65d945";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -128,26 +128,29 @@ class Model:
         q[..., idx] = numpy.tan(0.5 * q[..., idx])
         return q
 
-    def publish(self, q, J=None):
+    def publish(self, q):
         """In place: the algebra's joints ``q`` (tan-half-angles where ``angles``) as the
-        user's, and the rows of ``dq/dX`` (``J``, where given) alike: the same numbers as
-        :meth:`public` and :meth:`_public_jacobian`, without a copy (the hot functions call
+        user's: the same numbers as :meth:`public`, without a copy (the hot functions call
         it on each chunk, while it is in cache)."""
         for i in self.angles:
             t = q[..., i]
-            if J is not None:
-                J[..., i, :] *= (2.0 / (1.0 + t ** 2))[..., None]
             numpy.arctan(t, out=t)
             t *= 2.0
 
+    @staticmethod
+    def dq_dt(t):
+        """``dq/dt = 2 / (1 + t^2)`` of an angle joint ``q = 2 atan(t)``: the factor of its
+        row of dq/dX (the C driver of ``generated/<name>.c`` writes the same)."""
+        return 2.0 / (1.0 + t ** 2)
+
     def _public_jacobian(self, t, J):
-        """``dq/dX`` from ``dt/dX``: the rows of the angle joints times ``dq/dt =
-        2 / (1 + t^2)`` (``t`` the algebra's joints)."""
+        """``dq/dX`` from ``dt/dX``: the rows of the angle joints times :meth:`dq_dt`
+        (``t`` the algebra's joints)."""
         if not self.angles:
             return J
         idx = list(self.angles)
         J = numpy.array(J, dtype=float, copy=True)
-        J[..., idx, :] *= (2.0 / (1.0 + t[..., idx] ** 2))[..., None]
+        J[..., idx, :] *= self.dq_dt(t[..., idx])[..., None]
         return J
 
     # ------------------------------------------------------------ inverse kinematics
@@ -510,9 +513,9 @@ class Model:
         q, status = self._solve_by_columns(pose, mode, par, True, limits)
         k = pose.shape[0]
         n, m = len(self.joints), len(self.pose)
-        # the angle joints' rows of dq/dX times dq/dt = 2 / (1 + t^2) as they are written
-        # (the numbers of publish(q, J), without a pass over strided rows)
-        scale = {i: 2.0 / (1.0 + q[..., i] ** 2) for i in self.angles} if public else None
+        # the angle joints' rows of dq/dX times dq/dt as they are written (the numbers of
+        # _public_jacobian, without a pass over strided rows)
+        scale = {i: self.dq_dt(q[..., i]) for i in self.angles} if public else None
         values = self._jac_values(pose, q, par, into=J_out.reshape(k, n * m),
                                   row_scale=scale)
         singular = self.pivot_singular(values[:n], values[n:2 * n], (k,))
