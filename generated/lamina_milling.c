@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fad43362a93a7b1ab287a8d672613ab8d85067e4e239b8c43ad20e6e1d2424a5
+ * Derivation hash: 49362ebc78fc8a19d7ab964c1f09990424e24eab611f28dae9d250929fccea2f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "fad43362a93a7b1ab287a8d672613ab8d85067e4e239b8c43ad20e6e1d2424a5";
+const char bonered_derivation_hash[] = "49362ebc78fc8a19d7ab964c1f09990424e24eab611f28dae9d250929fccea2f";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -28,7 +28,7 @@ BF_INLINE void _step0_L(double v_x, double v_y, double v_z, double v_lOA, double
     const double v__c0 = 2.0*v_z;
     out[0] = 1.0;
     out[1] = -v__c0 + 2.0*v_dD;
-    out[2] = -v__c0*v_dD + v__s0 + v__s1*v_y + (v_x*v_x) + (v_y*v_y) + (v_z*v_z);
+    out[2] = -v_dD*v__c0 + v__s0 + v__s1*v_y + (v_x*v_x) + (v_y*v_y) + (v_z*v_z);
 }
 
 /* Coefficients (A, B, C) of the generator solved for t1 (from platform/1). */
@@ -82,7 +82,7 @@ BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1,
     const double v__c9 = 2.0*v_y;
     const double v__c10 = (v_t1*v_t1);
     const double v__c11 = v__c10*v__c9 + v__c9 - 4.0*v_lOA*v_t1;
-    const double v__c12 = v__c10*v__c8 + 2.0*v__c10*v_lOA + v__c8 - 2.0*v_lOA;
+    const double v__c12 = v__c10*v__c8 + 2.0*v_lOA*v__c10 + v__c8 - 2.0*v_lOA;
     const double v__c13 = (v_t2*v_t2);
     const double v__c14 = v__c13*v__c9 - v__c5 + v__c9;
     const double v__c15 = 2.0*v_lOB;

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fea6b5b54c344d4917dbe81c6d93e4bee55d53864df203eb75d657b002a0ac55
+ * Derivation hash: f5271f0344810f6259bf069d1f8318bbe262ea189fcc2416ac4f9b8b7840e093
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "fea6b5b54c344d4917dbe81c6d93e4bee55d53864df203eb75d657b002a0ac55";
+const char bonered_derivation_hash[] = "f5271f0344810f6259bf069d1f8318bbe262ea189fcc2416ac4f9b8b7840e093";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */
@@ -56,7 +56,7 @@ BF_INLINE void _step0_q1(double v_g, double v_v1, double v_v2, double v_x_1, dou
     const double v__s3 = v__k1*v_ra;
     out[0] = 0.0;
     out[1] = v__s0*v_g + 3.0*(v_g*v_g) - 3.0;
-    out[2] = v__s1*v_v2 + v__s2*v_g*v_v1 + v__s3 + 6.0*v_g*v_ra;
+    out[2] = v__s1*v_v2 + v__s2*v_g*v_v1 + v__s3 + 6.0*v_ra*v_g;
 }
 
 /* Coefficients (A, B, C) of the generator solved for q2 (from MP1/P2). */
@@ -70,7 +70,7 @@ BF_INLINE void _step1_q2(double v_g, double v_v1, double v_v2, double v_x_1, dou
     const double v__c1 = 6.0*v_g;
     out[0] = 0.0;
     out[1] = v__c0 + 3.0*(v_g*v_g) - 3.0;
-    out[2] = v__c0*v_v1 + v__c1*v_ra + v__c1*v_v2 + v__s1*v_v2 + v__s2 + 6.0*v_v1;
+    out[2] = v__c0*v_v1 + v_ra*v__c1 + v__c1*v_v2 + v__s1*v_v2 + v__s2 + 6.0*v_v1;
 }
 
 /* Coefficients (A, B, C) of the generator solved for q3 (from MP1/P3). */
@@ -84,7 +84,7 @@ BF_INLINE void _step2_q3(double v_g, double v_v1, double v_v2, double v_x_1, dou
     const double v__c1 = 6.0*v_g;
     out[0] = 0.0;
     out[1] = v__c0 + 3.0*(v_g*v_g) - 3.0;
-    out[2] = v__c0*v_v1 + v__c1*v_ra - v__c1*v_v2 + v__s1*v_v2 + v__s2 - 6.0*v_v1;
+    out[2] = v__c0*v_v1 + v_ra*v__c1 - v__c1*v_v2 + v__s1*v_v2 + v__s2 - 6.0*v_v1;
 }
 
 /* Coefficients (A, B, C) of the generator solved for q4 (from MP2/T1). */
@@ -107,7 +107,7 @@ BF_INLINE void _step3_q4(double v_g, double v_v1, double v_v2, double v_x_1, dou
     const double v__c0 = (v_x_2*v_x_2);
     out[0] = v__c0 + 1.0;
     out[1] = 0.0;
-    out[2] = v__c0*v__s4 + v__s3 + v__s5*v_y_1 + v__s6*v_x_2*v_y_3 - 4.0*(v_y_1*v_y_1) - 4.0*(v_y_3*v_y_3);
+    out[2] = v__s4*v__c0 + v__s3 + v__s5*v_y_1 + v__s6*v_x_2*v_y_3 - 4.0*(v_y_1*v_y_1) - 4.0*(v_y_3*v_y_3);
 }
 
 /* Coefficients (A, B, C) of the generator solved for q5 (from MP2/T2). */
@@ -129,7 +129,7 @@ BF_INLINE void _step4_q5(double v_g, double v_v1, double v_v2, double v_x_1, dou
     const double v__c0 = (v_x_1*v_x_1);
     out[0] = v__c0 + 1.0;
     out[1] = 0.0;
-    out[2] = v__c0*v__s4 + v__s3 + v__s5*v_y_2 + v__s6*v_x_1*v_y_3 - 4.0*(v_y_2*v_y_2) - 4.0*(v_y_3*v_y_3);
+    out[2] = v__s4*v__c0 + v__s3 + v__s5*v_y_2 + v__s6*v_x_1*v_y_3 - 4.0*(v_y_2*v_y_2) - 4.0*(v_y_3*v_y_3);
 }
 
 /* Coefficients (A, B, C) of the generator solved for q6 (from MP2/T3). */
@@ -152,7 +152,7 @@ BF_INLINE void _step5_q6(double v_g, double v_v1, double v_v2, double v_x_1, dou
     const double v__c0 = (v_x_2*v_x_2);
     out[0] = v__c0 + 1.0;
     out[1] = 0.0;
-    out[2] = v__c0*v__s4 + v__s3 + v__s5*v_y_1 + v__s6*v_x_2*v_y_3 - 4.0*(v_y_1*v_y_1) - 4.0*(v_y_3*v_y_3);
+    out[2] = v__s4*v__c0 + v__s3 + v__s5*v_y_1 + v__s6*v_x_2*v_y_3 - 4.0*(v_y_1*v_y_1) - 4.0*(v_y_3*v_y_3);
 }
 
 /* Pivots dG_k/dq_k of the linear IK steps and their row scales (in Study coordinates). */
@@ -208,7 +208,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__s14 = -v__k10;
     const double v__s15 = v__k6;
     const double v__c0 = v__f2;
-    const double v__c1 = v__c0*v__s0;
+    const double v__c1 = v__s0*v__c0;
     const double v__c2 = (v__c0*v__c0);
     const double v__c3 = v__c1 + 3.0*v__c2 - 3.0;
     const double v__c4 = 2.0*v_q4;
@@ -221,14 +221,14 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c11 = v__c10*v__c8 + v__c8;
     const double v__c12 = 2.0*v_q6;
     const double v__c13 = v__c12*v__c6 + v__c12;
-    const double v__c14 = v__c0*v__s1;
+    const double v__c14 = v__s1*v__c0;
     const double v__c15 = fabs(v__c3);
     const double v__c16 = (0.5)*v__c2 + 0.5;
     const double v__c17 = v__c16*v_y;
     const double v__c18 = (1.0/((v__c6 + 1.0)));
     const double v__c19 = 2.0*v__c5;
     const double v__c20 = (1.0/((v__c10 + 1.0)));
-    const double v__c21 = v__c20*v_rb;
+    const double v__c21 = v_rb*v__c20;
     const double v__c22 = v__c19*v__c21;
     const double v__c23 = v__c22*v__c9;
     const double v__c24 = v__c18*v__c23;
@@ -237,14 +237,14 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c27 = 6.0*v__c0;
     const double v__c28 = (0.5)*v__c0;
     const double v__c29 = -v__c24 - v__c28*v_y - 0.5*v_x;
-    const double v__c30 = v__c16*(v__c26 + v__c27*v_q1 + v__c29*v__s3 + v__s0*v_q1);
+    const double v__c30 = v__c16*(v__c26 + v__c27*v_q1 + v__s3*v__c29 + v__s0*v_q1);
     const double v__c31 = (0.5)*v__c10 + 0.5;
     const double v__c32 = v__c18*v__c31;
     const double v__c33 = v__c22*v__c32;
-    const double v__c34 = -2.0*v__c10*v__c18*v__c20*v__c5*v_rb + v__c33;
+    const double v__c34 = -2.0*v_rb*v__c10*v__c18*v__c20*v__c5 + v__c33;
     const double v__c35 = -v__c34;
-    const double v__c36 = v__c0*v__s3;
-    const double v__c37 = 2.0*v__c0*v__c10*v__c18*v__c20*v__c5*v_rb - v__c0*v__c33;
+    const double v__c36 = v__s3*v__c0;
+    const double v__c37 = 2.0*v_rb*v__c0*v__c10*v__c18*v__c20*v__c5 - v__c0*v__c33;
     const double v__c38 = 2.0*v__c9;
     const double v__c39 = v__c18*v__c38;
     const double v__c40 = v__c21*v__c39*v__c6;
@@ -253,11 +253,11 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c43 = v__c41*v__c42;
     const double v__c44 = -v__c40 + v__c43;
     const double v__c45 = -v__c44;
-    const double v__c46 = 2.0*v__c0*v__c18*v__c20*v__c6*v__c9*v_rb - v__c0*v__c43;
+    const double v__c46 = 2.0*v_rb*v__c0*v__c18*v__c20*v__c6*v__c9 - v__c0*v__c43;
     const double v__c47 = 3.0*v__c0;
     const double v__c48 = v__c1 + 6.0;
     const double v__c49 = v__c28*v__c48 + v__c47;
-    const double v__c50 = v__c0*v__s4;
+    const double v__c50 = v__s4*v__c0;
     const double v__c51 = v__c27 + v__s2;
     const double v__c52 = v__c28*v__c51;
     const double v__c53 = v__c35*v__c48 + v__c37*v__c51;
@@ -269,7 +269,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c59 = v__c58*v__c9;
     const double v__c60 = v__c5*v__c59;
     const double v__c61 = 12.0*v__c0*v__c60;
-    const double v__c62 = v__c26 + v__c29*v__s0;
+    const double v__c62 = v__c26 + v__s0*v__c29;
     const double v__c63 = v__c16*(v__c27*v_q2 - v__c56 + v__c57 - v__c61 + v__c62 + v__s0*v_q2) + v__c25*v__c51 - v__c48*v__c55;
     const double v__c64 = v__c1 - 6.0;
     const double v__c65 = v__c28*v__c64;
@@ -278,7 +278,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c68 = v__c35*v__c64 + v__c37*v__c66;
     const double v__c69 = v__c45*v__c64 + v__c46*v__c66;
     const double v__c70 = v__c16*(v__c27*v_q3 + v__c56 - v__c57 + v__c61 + v__c62 + v__s0*v_q3) + v__c25*v__c66 - v__c55*v__c64;
-    const double v__c71 = v__c5*v__s12;
+    const double v__c71 = v__s12*v__c5;
     const double v__c72 = 4.0*v_z;
     const double v__c73 = v__c5*v__c72 + 16.0*v__c60;
     const double v__c74 = -v__c73 + v__s7;
@@ -289,28 +289,28 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c79 = -v__c77 + v__c78;
     const double v__c80 = 16.0*v__c6;
     const double v__c81 = -v__c59*v__c80 + v__c72;
-    const double v__c82 = v__c5*v__s6 + v__c81;
+    const double v__c82 = v__s6*v__c5 + v__c81;
     const double v__c83 = 2.0*v__c6;
     const double v__c84 = v__c10*v__c58;
     const double v__c85 = v__c21*v__c32*v__c83 - v__c83*v__c84;
     const double v__c86 = v__c34*v__c74 + v__c82*v__c85;
-    const double v__c87 = v__c5*v__s11;
+    const double v__c87 = v__s11*v__c5;
     const double v__c88 = (0.5)*v_z;
     const double v__c89 = v__c40 - v__c88;
     const double v__c90 = (v__c5*v__c5*v__c5);
     const double v__c91 = v__c23 - v__c42*v__c90;
     const double v__c92 = v__c41*v__c88 + v__c44;
-    const double v__c93 = v__c41*(v__c19*(v_q4*v_q4) + v__c87 + v__c89*v__s6) + v__c74*v__c92 + v__c82*v__c91;
+    const double v__c93 = v__c41*(v__c19*(v_q4*v_q4) + v__c87 + v__s6*v__c89) + v__c74*v__c92 + v__c82*v__c91;
     const double v__c94 = v__c72*v__c9 - v__c80*v__c84 + v__s7;
     const double v__c95 = (0.5)*v__c9*v__c94;
-    const double v__c96 = v__c81 + v__c9*v__s13;
+    const double v__c96 = v__c81 + v__s13*v__c9;
     const double v__c97 = v__c91*v__c96 + v__c94*(v__c10*v__c22 - 2.0*v__c84*v__c90);
-    const double v__c98 = v__c89*v__s13;
-    const double v__c99 = v__c31*(v__c38*(v_q5*v_q5) + v__c9*v__s11 + v__c98) + v__c85*v__c96 + v__c94*(2.0*v__c18*v__c6*v__c9*v_rb - v__c31*v__c88 - v__c58*v__c83*(v__c9*v__c9*v__c9));
-    const double v__c100 = v__c5*v__s14;
+    const double v__c98 = v__s13*v__c89;
+    const double v__c99 = v__c31*(v__c38*(v_q5*v_q5) + v__s11*v__c9 + v__c98) + v__c85*v__c96 + v__c94*(2.0*v_rb*v__c18*v__c6*v__c9 - v__c31*v__c88 - v__c58*v__c83*(v__c9*v__c9*v__c9));
+    const double v__c100 = v__s14*v__c5;
     const double v__c101 = -v__c73 + v__s15;
     const double v__c102 = v__c101*v__c75;
-    const double v__c103 = v__c5*v__s13 + v__c81;
+    const double v__c103 = v__s13*v__c5 + v__c81;
     const double v__c104 = v__c101*v__c34 + v__c103*v__c85;
     const double v__c105 = v__c101*v__c92 + v__c103*v__c91 + v__c41*(v__c19*(v_q6*v_q6) + v__c87 + v__c98);
     const double v__c106 = (1.0/(v__c3));
@@ -324,25 +324,25 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     out[3] = v__c7;
     out[4] = v__c11;
     out[5] = v__c13;
-    out[6] = v__c15 + fabs(v__c14) + fabs(v__c2*v__s0 + v__s2) + fabs(v__c35*v__c36 + v__c37*v__s1) + fabs(v__c36*v__c45 + v__c46*v__s1) + fabs(v__c1*v__c17 + v__c25*v__s1 + v__c30);
+    out[6] = v__c15 + fabs(v__c14) + fabs(v__s0*v__c2 + v__s2) + fabs(v__c35*v__c36 + v__s1*v__c37) + fabs(v__c36*v__c45 + v__s1*v__c46) + fabs(v__c1*v__c17 + v__s1*v__c25 + v__c30);
     out[7] = v__c15 + fabs(v__c53) + fabs(v__c54) + fabs(v__c63) + fabs(v__c49 - v__s5) + fabs(v__c50 + v__c52 - 3.0);
     out[8] = v__c15 + fabs(v__c68) + fabs(v__c69) + fabs(v__c70) + fabs(v__c50 + v__c67) + fabs(v__c47 - v__c65 + v__s5);
     out[9] = fabs(v__c7) + fabs(v__c86) + fabs(v__c93) + fabs(v__c71 + v__c76 + v__c79);
-    out[10] = fabs(v__c11) + fabs(v__c97) + fabs(v__c99) + fabs(v__c79 + v__c9*v__s14 - v__c95);
+    out[10] = fabs(v__c11) + fabs(v__c97) + fabs(v__c99) + fabs(v__c79 + v__s14*v__c9 - v__c95);
     out[11] = fabs(v__c104) + fabs(v__c105) + fabs(v__c13) + fabs(v__c100 + v__c102 + v__c79);
     out[12] = v__c106*v__c36;
-    out[13] = v__c106*(v__c2*v__s2 + v__s0);
+    out[13] = v__c106*(v__s2*v__c2 + v__s0);
     out[14] = 0.0;
-    out[15] = v__c106*(v__c14*v__c35 + v__c37*v__s3);
-    out[16] = v__c106*(v__c14*v__c45 + v__c46*v__s3);
-    out[17] = v__c106*(v__c0*v__c17*v__s2 + v__c25*v__s3 - v__c30);
-    out[18] = v__c106*(v__c0*v__s5 - v__c52 + 3.0);
+    out[15] = v__c106*(v__c14*v__c35 + v__s3*v__c37);
+    out[16] = v__c106*(v__c14*v__c45 + v__s3*v__c46);
+    out[17] = v__c106*(v__s2*v__c0*v__c17 + v__s3*v__c25 - v__c30);
+    out[18] = v__c106*(v__s5*v__c0 - v__c52 + 3.0);
     out[19] = v__c106*(v__c49 + v__s4);
     out[20] = 0.0;
     out[21] = -v__c106*v__c53;
     out[22] = -v__c106*v__c54;
     out[23] = -v__c106*v__c63;
-    out[24] = v__c106*(v__c0*v__s5 - v__c67);
+    out[24] = v__c106*(v__s5*v__c0 - v__c67);
     out[25] = v__c106*(-v__c47 + v__c65 + v__s4);
     out[26] = 0.0;
     out[27] = -v__c106*v__c68;
@@ -356,7 +356,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     out[35] = 0.0;
     out[36] = 0.0;
     out[37] = 0.0;
-    out[38] = v__c109*(v__c108 + v__c9*v__s12 + v__c95);
+    out[38] = v__c109*(v__c108 + v__s12*v__c9 + v__c95);
     out[39] = -v__c109*v__c99;
     out[40] = -v__c109*v__c97;
     out[41] = 0.0;
@@ -372,13 +372,13 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
 BF_INLINE void _limit_values(double v__f0, double v__f1, double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
 {
     const double v__c0 = sin(v_beta);
-    const double v__c1 = v__c0*v_rb;
+    const double v__c1 = v_rb*v__c0;
     const double v__c2 = -v__c1 + v_z;
     const double v__c3 = cos(v_beta);
-    const double v__c4 = v__c3*v_rb;
+    const double v__c4 = v_rb*v__c3;
     const double v__c5 = v__f0;
     const double v__c6 = v__f1;
-    const double v__c7 = 4.0*v__c5*v__c6*v_rb/(((v__c5*v__c5) + 1.0)*((v__c6*v__c6) + 1.0));
+    const double v__c7 = 4.0*v_rb*v__c5*v__c6/(((v__c5*v__c5) + 1.0)*((v__c6*v__c6) + 1.0));
     const double v__c8 = v__c4 - v__c7 - v_ra;
     const double v__c9 = (1.0/sqrt((v__c2*v__c2) + (v__c8*v__c8)));
     const double v__c10 = cos(v_alpha);
@@ -386,7 +386,7 @@ BF_INLINE void _limit_values(double v__f0, double v__f1, double v_x, double v_y,
     const double v__c12 = v__c0*v__c10;
     const double v__c13 = sin(v_alpha);
     const double v__c14 = v__c13*v__c4 + v_z;
-    const double v__c15 = v__c10*v_rb - v_ra;
+    const double v__c15 = v_rb*v__c10 - v_ra;
     const double v__c16 = v__c1*v__c13 - v__c7;
     const double v__c17 = (1.0/sqrt((v__c14*v__c14) + (v__c15*v__c15) + (v__c16*v__c16)));
     const double v__c18 = v__c1 + v_z;

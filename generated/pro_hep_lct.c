@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: abd3625ec52293b0e4c4656364c166b5e98bbbd7d61bcbf2d123a04e38e2ae5a
+ * Derivation hash: e3df99574e0883df1efdbffa4207f5a9d8566b0cb6c3a1dbf64cb6f24ac6901d
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "abd3625ec52293b0e4c4656364c166b5e98bbbd7d61bcbf2d123a04e38e2ae5a";
+const char bonered_derivation_hash[] = "e3df99574e0883df1efdbffa4207f5a9d8566b0cb6c3a1dbf64cb6f24ac6901d";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
@@ -94,14 +94,14 @@ BF_INLINE void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v
     const double v__c4 = (v_Xd*v_Xd);
     const double v__c5 = 8.0*v_t1;
     const double v__c6 = (v_Yd*v_Yd);
-    const double v__c7 = -v_Xd*v__c2 + v__c1*v_l1 + v__c3*v_d*v_t1 - v__c4*v__c5 - v__c5*v__c6 + v__s3*v_t1 + v__s4;
+    const double v__c7 = -v_Xd*v__c2 + v_l1*v__c1 + v_d*v__c3*v_t1 - v__c4*v__c5 - v__c5*v__c6 + v__s3*v_t1 + v__s4;
     const double v__c8 = 16.0*v_l3*v_w1;
     const double v__c9 = 8.0*v_w1;
-    const double v__c10 = v_Xd*v__c8 + v_Yd*v__s12*v_w1 - v__c1*v_l3 + v__c4*v__c9 + v__c6*v__c9 + v__s10*v_w1 + v__s11;
+    const double v__c10 = v_Xd*v__c8 + v__s12*v_Yd*v_w1 - v_l3*v__c1 + v__c4*v__c9 + v__c6*v__c9 + v__s10*v_w1 + v__s11;
     const double v__c11 = 2.0*v_Xu - 2.0*v_lq5;
     const double v__c12 = 8.0*v_Xd;
     const double v__c13 = (v_t1*v_t1);
-    const double v__c14 = v__c12*v__c13 + v__c12 + 8.0*v__c13*v_l1 - 8.0*v_l1;
+    const double v__c14 = v__c12*v__c13 + v__c12 + 8.0*v_l1*v__c13 - 8.0*v_l1;
     const double v__c15 = -v__c3;
     const double v__c16 = 4.0*v_d;
     const double v__c17 = v__c13*v__c16 - v__c13*v__c3 + v__c15 + v__c16 + v__c2;
@@ -118,7 +118,7 @@ BF_INLINE void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v
     out[4] = 2.0;
     out[5] = fabs(v__c0) + fabs(v__c11);
     out[6] = fabs(v__c14) + fabs(v__c17) + fabs(v__c7);
-    out[7] = fabs(v__c10) + fabs(v__c20) + fabs(v__c19*v__s13 + v__c21 + v__c3 - v__c8 + v__s13);
+    out[7] = fabs(v__c10) + fabs(v__c20) + fabs(v__s13*v__c19 + v__c21 + v__c3 - v__c8 + v__s13);
     out[8] = 0.0;
     out[9] = 0.0;
     out[10] = v__c14*v__c22;
@@ -126,7 +126,7 @@ BF_INLINE void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v
     out[12] = 0.0;
     out[13] = 0.0;
     out[14] = -v__c20*v__c23;
-    out[15] = v__c23*(v__c15 + v__c19*v__s14 - v__c21 + v__c8 + v__s14);
+    out[15] = v__c23*(v__c15 + v__s14*v__c19 - v__c21 + v__c8 + v__s14);
     out[16] = v__c11/v__c0;
     out[17] = 1.0;
     out[18] = 0.0;

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e7095450e28223a7574127d77594ebcb22e330ff6b18b6cd9e4d139d9aa29df5
+ * Derivation hash: 787f1a22b145e2374dc09fd074f378358faa2e22da154d055c131e2443916010
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "e7095450e28223a7574127d77594ebcb22e330ff6b18b6cd9e4d139d9aa29df5";
+const char bonered_derivation_hash[] = "787f1a22b145e2374dc09fd074f378358faa2e22da154d055c131e2443916010";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */
@@ -55,7 +55,7 @@ BF_INLINE void _step0_q2(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__k9 = v__k1*v__k4;
     const double v__k10 = 4.0*v__k0 + 4.0;
     const double v__k11 = (1.0/(v__k10));
-    const double v__k12 = 1.7320508075688772*v_rb;
+    const double v__k12 = v_rb*1.7320508075688772;
     const double v__k13 = v__k11*v__k12;
     const double v__k14 = v_ra*v_ta/v__k3;
     const double v__k15 = v__k11*v__k7*v_tb;
@@ -117,7 +117,7 @@ BF_INLINE void _step1_q5(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__k6 = v_rb/(8.0*v__k1 + 8.0);
     const double v__k7 = 4.0*v__k6;
     const double v__k8 = -v__k7;
-    const double v__k9 = 1.7320508075688772*v__k5;
+    const double v__k9 = v__k5*1.7320508075688772;
     const double v__k10 = v__k0*v__k5;
     const double v__k11 = -v__k10;
     const double v__k12 = v_rb*v_tb/v__k3;
@@ -542,7 +542,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c9 = v__c0 - 1.0;
     const double v__c10 = v__c8*v__c9;
     const double v__c11 = v__c10*v__c5*v__c7;
-    const double v__c12 = v__c11*v__s6 + v__c4*v__s3;
+    const double v__c12 = v__s6*v__c11 + v__s3*v__c4;
     const double v__c13 = v__c12 + v_z;
     const double v__c14 = v__f2;
     const double v__c15 = (v__c14*v__c14);
@@ -557,13 +557,13 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c24 = v__c14*v__c6;
     const double v__c25 = v__c16*v__c7;
     const double v__c26 = v__c25*(-v__c1*v__c14 + v__c1*v__c24 - v__c14 - v__c15*v__c23 + v__c23 + v__c24);
-    const double v__c27 = v__c21*v__s1 + v__c26*v__s0;
+    const double v__c27 = v__s1*v__c21 + v__s0*v__c26;
     const double v__c28 = v__c27 + v__s5 + v_x;
     const double v__c29 = v__c14*v__c16;
     const double v__c30 = v__c20*v__c29;
     const double v__c31 = v__c15*v__c6;
     const double v__c32 = v__c25*(-v__c1*v__c15 + v__c1*v__c31 - v__c1*v__c6 + 8.0*v__c14*v__c22 - v__c15 + v__c2 + v__c31 - v__c6);
-    const double v__c33 = v__c30*v__s3 + v__c32*v__s2;
+    const double v__c33 = v__s3*v__c30 + v__s2*v__c32;
     const double v__c34 = v__s4 + v_y;
     const double v__c35 = v__c33 + v__c34;
     const double v__c36 = v__c27*v__c35 - v__c28*v__c33;
@@ -574,14 +574,14 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c41 = v__c20*v__c39;
     const double v__c42 = 2.0*v__c4;
     const double v__c43 = v__c16*v__c17*v__c18*v__c3*v__c38*v__c8*v__c9 - v__c36*v__c42 - v__c37*v__c41;
-    const double v__c44 = v__c11*v__s13;
-    const double v__c45 = v__c4*v__s10 + v__c44;
+    const double v__c44 = v__s13*v__c11;
+    const double v__c45 = v__s10*v__c4 + v__c44;
     const double v__c46 = v__c45 + v_z;
-    const double v__c47 = v__c26*v__s7;
-    const double v__c48 = v__c21*v__s8 + v__c47;
+    const double v__c47 = v__s7*v__c26;
+    const double v__c48 = v__s8*v__c21 + v__c47;
     const double v__c49 = v__c48 + v__s12 + v_x;
-    const double v__c50 = v__c32*v__s9;
-    const double v__c51 = v__c30*v__s10 + v__c50;
+    const double v__c50 = v__s9*v__c32;
+    const double v__c51 = v__s10*v__c30 + v__c50;
     const double v__c52 = v__s11 + v_y;
     const double v__c53 = v__c51 + v__c52;
     const double v__c54 = v__c48*v__c53 - v__c49*v__c51;
@@ -589,11 +589,11 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c56 = -v__c45*v__c53 + v__c46*v__c51;
     const double v__c57 = -v__c19*v__c55 - v__c39*v__c56;
     const double v__c58 = v__c16*v__c17*v__c18*v__c3*v__c56*v__c8*v__c9 - v__c41*v__c55 - v__c42*v__c54;
-    const double v__c59 = v__c11*v__s20 + v__c4*v__s17;
+    const double v__c59 = v__s20*v__c11 + v__s17*v__c4;
     const double v__c60 = v__c59 + v_z;
-    const double v__c61 = v__c21*v__s15 + v__c26*v__s14;
+    const double v__c61 = v__s15*v__c21 + v__s14*v__c26;
     const double v__c62 = v__c61 + v__s19 + v_x;
-    const double v__c63 = v__c30*v__s17 + v__c32*v__s16;
+    const double v__c63 = v__s17*v__c30 + v__s16*v__c32;
     const double v__c64 = v__s18 + v_y;
     const double v__c65 = v__c63 + v__c64;
     const double v__c66 = v__c61*v__c65 - v__c62*v__c63;
@@ -601,33 +601,33 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c68 = -v__c59*v__c65 + v__c60*v__c63;
     const double v__c69 = -v__c19*v__c67 - v__c39*v__c68;
     const double v__c70 = v__c16*v__c17*v__c18*v__c3*v__c68*v__c8*v__c9 - v__c41*v__c67 - v__c42*v__c66;
-    const double v__c71 = v__c11*v__s26 + v__c4*v__s24;
+    const double v__c71 = v__s26*v__c11 + v__s24*v__c4;
     const double v__c72 = v__c71 + v_z;
-    const double v__c73 = v__c21*v__s22 + v__c26*v__s21;
+    const double v__c73 = v__s22*v__c21 + v__s21*v__c26;
     const double v__c74 = v__c73 + v__s25 + v_x;
-    const double v__c75 = v__c30*v__s24 + v__c32*v__s23;
+    const double v__c75 = v__s24*v__c30 + v__s23*v__c32;
     const double v__c76 = v__c64 + v__c75;
     const double v__c77 = v__c73*v__c76 - v__c74*v__c75;
     const double v__c78 = v__c71*v__c74 - v__c72*v__c73;
     const double v__c79 = -v__c71*v__c76 + v__c72*v__c75;
     const double v__c80 = -v__c19*v__c78 - v__c39*v__c79;
     const double v__c81 = v__c16*v__c17*v__c18*v__c3*v__c79*v__c8*v__c9 - v__c41*v__c78 - v__c42*v__c77;
-    const double v__c82 = v__c11*v__s32 + v__c4*v__s30;
+    const double v__c82 = v__s32*v__c11 + v__s30*v__c4;
     const double v__c83 = v__c82 + v_z;
-    const double v__c84 = v__c21*v__s28 + v__c26*v__s27;
+    const double v__c84 = v__s28*v__c21 + v__s27*v__c26;
     const double v__c85 = v__c84 + v__s31 + v_x;
-    const double v__c86 = v__c30*v__s30 + v__c32*v__s29;
+    const double v__c86 = v__s30*v__c30 + v__s29*v__c32;
     const double v__c87 = v__c34 + v__c86;
     const double v__c88 = v__c84*v__c87 - v__c85*v__c86;
     const double v__c89 = v__c82*v__c85 - v__c83*v__c84;
     const double v__c90 = -v__c82*v__c87 + v__c83*v__c86;
     const double v__c91 = -v__c19*v__c89 - v__c39*v__c90;
     const double v__c92 = v__c16*v__c17*v__c18*v__c3*v__c8*v__c9*v__c90 - v__c41*v__c89 - v__c42*v__c88;
-    const double v__c93 = v__c4*v__s34 + v__c44;
+    const double v__c93 = v__s34*v__c4 + v__c44;
     const double v__c94 = v__c93 + v_z;
-    const double v__c95 = v__c21*v__s33 + v__c47;
+    const double v__c95 = v__s33*v__c21 + v__c47;
     const double v__c96 = v__c95 + v__s35 + v_x;
-    const double v__c97 = v__c30*v__s34 + v__c50;
+    const double v__c97 = v__s34*v__c30 + v__c50;
     const double v__c98 = v__c52 + v__c97;
     const double v__c99 = v__c95*v__c98 - v__c96*v__c97;
     const double v__c100 = v__c93*v__c96 - v__c94*v__c95;
@@ -824,13 +824,13 @@ BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha,
     const double v__c8 = sin(v_gamma);
     const double v__c9 = v__c2*v__c8;
     const double v__c10 = v__c1*v__c9 + v__c7;
-    const double v__c11 = v__c3*v__s2;
+    const double v__c11 = v__s2*v__c3;
     const double v__c12 = v__s4 + v_y;
-    const double v__c13 = v__c10*v__s1 + v__c11*v__c8 + v__c12;
+    const double v__c13 = v__s1*v__c10 + v__c11*v__c8 + v__c12;
     const double v__c14 = v__c2*v__c6;
     const double v__c15 = v__c1*v__c14 - v__c5*v__c8;
-    const double v__c16 = v__c11*v__c6 + v__c15*v__s1 + v__s3 + v_x;
-    const double v__c17 = v__c1*v__s0 + v__c4*v__s1 + v_z;
+    const double v__c16 = v__c11*v__c6 + v__s1*v__c15 + v__s3 + v_x;
+    const double v__c17 = v__s0*v__c1 + v__s1*v__c4 + v_z;
     const double v__c18 = v__s9/sqrt((v__c13*v__c13) + (v__c16*v__c16) + (v__c17*v__c17));
     const double v__c19 = 210.0*v__c3*v__c5;
     const double v__c20 = 210.0*v__c1*v__c7 + 210.0*v__c9;
@@ -838,29 +838,29 @@ BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha,
     const double v__c22 = v__c3*v__c8;
     const double v__c23 = v__c3*v__c6;
     const double v__c24 = v__s14 + v_y;
-    const double v__c25 = v__c10*v__s11 + v__c22*v__s12 + v__c24;
-    const double v__c26 = v__c15*v__s11 + v__c23*v__s12 + v__s13 + v_x;
-    const double v__c27 = v__c1*v__s10 + v__c4*v__s11 + v_z;
+    const double v__c25 = v__s11*v__c10 + v__s12*v__c22 + v__c24;
+    const double v__c26 = v__s11*v__c15 + v__s12*v__c23 + v__s13 + v_x;
+    const double v__c27 = v__s10*v__c1 + v__s11*v__c4 + v_z;
     const double v__c28 = v__s19/sqrt((v__c25*v__c25) + (v__c26*v__c26) + (v__c27*v__c27));
-    const double v__c29 = v__c10*v__s21 + v__c22*v__s22 + v__c24;
-    const double v__c30 = v__c15*v__s21 + v__c23*v__s22 + v__s23 + v_x;
-    const double v__c31 = v__c1*v__s20 + v__c4*v__s21 + v_z;
+    const double v__c29 = v__s21*v__c10 + v__s22*v__c22 + v__c24;
+    const double v__c30 = v__s21*v__c15 + v__s22*v__c23 + v__s23 + v_x;
+    const double v__c31 = v__s20*v__c1 + v__s21*v__c4 + v_z;
     const double v__c32 = v__s28/sqrt((v__c29*v__c29) + (v__c30*v__c30) + (v__c31*v__c31));
-    const double v__c33 = v__c10*v__s30 + v__c12 + v__c22*v__s31;
-    const double v__c34 = v__c15*v__s30 + v__c23*v__s31 + v__s32 + v_x;
-    const double v__c35 = v__c1*v__s29 + v__c4*v__s30 + v_z;
+    const double v__c33 = v__s30*v__c10 + v__c12 + v__s31*v__c22;
+    const double v__c34 = v__s30*v__c15 + v__s31*v__c23 + v__s32 + v_x;
+    const double v__c35 = v__s29*v__c1 + v__s30*v__c4 + v_z;
     const double v__c36 = v__s37/sqrt((v__c33*v__c33) + (v__c34*v__c34) + (v__c35*v__c35));
-    const double v__c37 = v__c10*v__s39 + v__s42 + v_y;
-    const double v__c38 = v__c22*v__s40 + v__c37;
-    const double v__c39 = v__c15*v__s39 + v_x;
-    const double v__c40 = v__c23*v__s40 + v__c39 + v__s41;
-    const double v__c41 = v__c0 + v__c4*v__s45;
-    const double v__c42 = v__c4*v__s39 + v_z;
-    const double v__c43 = v__c1*v__s38 + v__c42;
+    const double v__c37 = v__s39*v__c10 + v__s42 + v_y;
+    const double v__c38 = v__s40*v__c22 + v__c37;
+    const double v__c39 = v__s39*v__c15 + v_x;
+    const double v__c40 = v__s40*v__c23 + v__c39 + v__s41;
+    const double v__c41 = v__c0 + v__s45*v__c4;
+    const double v__c42 = v__s39*v__c4 + v_z;
+    const double v__c43 = v__s38*v__c1 + v__c42;
     const double v__c44 = v__s47/sqrt((v__c38*v__c38) + (v__c40*v__c40) + (v__c43*v__c43));
-    const double v__c45 = v__c22*v__s38 + v__c37;
-    const double v__c46 = v__c23*v__s38 + v__c39 + v__s48;
-    const double v__c47 = v__c1*v__s40 + v__c42;
+    const double v__c45 = v__s38*v__c22 + v__c37;
+    const double v__c46 = v__s38*v__c23 + v__c39 + v__s48;
+    const double v__c47 = v__s40*v__c1 + v__c42;
     const double v__c48 = v__s51/sqrt((v__c45*v__c45) + (v__c46*v__c46) + (v__c47*v__c47));
     out[0] = v_q1;
     out[1] = v_q2;
@@ -868,17 +868,17 @@ BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha,
     out[3] = v_q4;
     out[4] = v_q5;
     out[5] = v_q6;
-    out[6] = acos(v__c18*(v__c0 + v__c1*v__s7 + v__c13*v__s6 + v__c16*v__s5 + v__c4*v__s8));
+    out[6] = acos(v__c18*(v__c0 + v__s7*v__c1 + v__s6*v__c13 + v__s5*v__c16 + v__s8*v__c4));
     out[7] = acos(v__c18*(v__c13*v__c21 + v__c16*v__c20 + v__c17*v__c19 + v__s5*(-v__c1*v__c17 + v__c13*v__c22 + v__c16*v__c23) + v__s6*(v__c10*v__c13 + v__c15*v__c16 + v__c17*v__c4)));
-    out[8] = acos(v__c28*(v__c0 + v__c1*v__s17 + v__c25*v__s16 + v__c26*v__s15 + v__c4*v__s18));
+    out[8] = acos(v__c28*(v__c0 + v__s17*v__c1 + v__s16*v__c25 + v__s15*v__c26 + v__s18*v__c4));
     out[9] = acos(v__c28*(v__c19*v__c27 + v__c20*v__c26 + v__c21*v__c25 + v__s15*(-v__c1*v__c27 + v__c22*v__c25 + v__c23*v__c26) + v__s16*(v__c10*v__c25 + v__c15*v__c26 + v__c27*v__c4)));
-    out[10] = acos(v__c32*(v__c0 + v__c1*v__s26 + v__c29*v__s24 + v__c30*v__s25 + v__c4*v__s27));
+    out[10] = acos(v__c32*(v__c0 + v__s26*v__c1 + v__s24*v__c29 + v__s25*v__c30 + v__s27*v__c4));
     out[11] = acos(v__c32*(v__c19*v__c31 + v__c20*v__c30 + v__c21*v__c29 + v__s24*(v__c10*v__c29 + v__c15*v__c30 + v__c31*v__c4) + v__s25*(-v__c1*v__c31 + v__c22*v__c29 + v__c23*v__c30)));
-    out[12] = acos(v__c36*(v__c0 + v__c1*v__s35 + v__c33*v__s33 + v__c34*v__s34 + v__c4*v__s36));
+    out[12] = acos(v__c36*(v__c0 + v__s35*v__c1 + v__s33*v__c33 + v__s34*v__c34 + v__s36*v__c4));
     out[13] = acos(v__c36*(v__c19*v__c35 + v__c20*v__c34 + v__c21*v__c33 + v__s33*(v__c10*v__c33 + v__c15*v__c34 + v__c35*v__c4) + v__s34*(-v__c1*v__c35 + v__c22*v__c33 + v__c23*v__c34)));
-    out[14] = acos(v__c44*(v__c1*v__s46 + v__c38*v__s43 + v__c40*v__s44 + v__c41));
+    out[14] = acos(v__c44*(v__s46*v__c1 + v__s43*v__c38 + v__s44*v__c40 + v__c41));
     out[15] = acos(v__c44*(v__c19*v__c43 + v__c20*v__c40 + v__c21*v__c38 + v__s43*(v__c10*v__c38 + v__c15*v__c40 + v__c4*v__c43) + v__s44*(-v__c1*v__c43 + v__c22*v__c38 + v__c23*v__c40)));
-    out[16] = acos(v__c48*(v__c1*v__s50 + v__c41 + v__c45*v__s43 + v__c46*v__s49));
+    out[16] = acos(v__c48*(v__s50*v__c1 + v__c41 + v__s43*v__c45 + v__s49*v__c46));
     out[17] = acos(v__c48*(v__c19*v__c47 + v__c20*v__c46 + v__c21*v__c45 + v__s43*(v__c10*v__c45 + v__c15*v__c46 + v__c4*v__c47) + v__s49*(-v__c1*v__c47 + v__c22*v__c45 + v__c23*v__c46)));
 }
 

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: caacf27cfa662e4bccf9db2c64122285567b3dd53f68c8fdfe0a9c8b267280e4
+ * Derivation hash: 05b60fed9aedfc188f8885bb03b8180fb7f7aae91b58db044cac253e862a8ec4
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "caacf27cfa662e4bccf9db2c64122285567b3dd53f68c8fdfe0a9c8b267280e4";
+const char bonered_derivation_hash[] = "05b60fed9aedfc188f8885bb03b8180fb7f7aae91b58db044cac253e862a8ec4";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */
@@ -44,7 +44,7 @@ BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, doub
     const double v__c20 = v__c18 + v__c19;
     const double v__c21 = v__c20 + 1.0;
     const double v__c22 = (1.0/(v__c21));
-    const double v__c23 = v__c22*v_rb;
+    const double v__c23 = v_rb*v__c22;
     const double v__c24 = v__c12*v__c23;
     const double v__c25 = v__c23*(v__c11 - v__c13)*(v__c11 + v__c13);
     const double v__c26 = (0.5)*v__c25;
@@ -71,7 +71,7 @@ BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, doub
     out[3] = -v__c13*v__c26 - v__c14*v__c15*v__c24;
     out[4] = v__c13*v__c34 + v__c28;
     out[5] = -v__c11*v__c34 + v__c26;
-    out[6] = v__c10*v__c15*v__c17*v__c22*v_rb - v__c11*v__c26 - v__c34;
+    out[6] = v_rb*v__c10*v__c15*v__c17*v__c22 - v__c11*v__c26 - v__c34;
     out[7] = v__c36;
     out[8] = v__c12*v__c22*v__c40*v__c7 - v__c31*v__c39 - 0.5*v__c36*(2.0*v__c37*v__c39 + v__c41 + 2.0*v__c43) - 0.5*v__c38;
     out[9] = (0.5)*v__c35*v__c4*(-2.0*v__c13*v__c42 + v__c32*v__c39 + v__c38) - v__c37*v__c39 - 0.5*v__c41 - v__c43;
@@ -89,7 +89,7 @@ BF_INLINE void _step0_q4(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__s3 = v__k1*v_rb;
     out[0] = 0.0;
     out[1] = v__s0*v_g + 3.0*(v_g*v_g) - 3.0;
-    out[2] = v__s1*v_v2 + v__s2*v_g*v_v1 + v__s3 + 6.0*v_g*v_rb;
+    out[2] = v__s1*v_v2 + v__s2*v_g*v_v1 + v__s3 + 6.0*v_rb*v_g;
 }
 
 /* Coefficients (A, B, C) of the generator solved for q5 (from C/P2). */
@@ -103,7 +103,7 @@ BF_INLINE void _step1_q5(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__c1 = 6.0*v_g;
     out[0] = 0.0;
     out[1] = v__c0 + 3.0*(v_g*v_g) - 3.0;
-    out[2] = v__c0*v_v1 + v__c1*v_rb + v__c1*v_v2 + v__s1*v_v2 + v__s2 + 6.0*v_v1;
+    out[2] = v__c0*v_v1 + v_rb*v__c1 + v__c1*v_v2 + v__s1*v_v2 + v__s2 + 6.0*v_v1;
 }
 
 /* Coefficients (A, B, C) of the generator solved for q6 (from C/P3). */
@@ -117,7 +117,7 @@ BF_INLINE void _step2_q6(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__c1 = 6.0*v_g;
     out[0] = 0.0;
     out[1] = v__c0 + 3.0*(v_g*v_g) - 3.0;
-    out[2] = v__c0*v_v1 + v__c1*v_rb - v__c1*v_v2 + v__s1*v_v2 + v__s2 - 6.0*v_v1;
+    out[2] = v__c0*v_v1 + v_rb*v__c1 - v__c1*v_v2 + v__s1*v_v2 + v__s2 - 6.0*v_v1;
 }
 
 /* Coefficients (A, B, C) of the generator solved for q2 (from B/T2). */
@@ -139,7 +139,7 @@ BF_INLINE void _step3_q2(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__c0 = (v_x_1*v_x_1);
     out[0] = v__c0 + 1.0;
     out[1] = 0.0;
-    out[2] = v__c0*v__s4 + v__s3 + v__s5*v_y_2 + v__s6*v_x_1*v_y_3 - 4.0*(v_y_2*v_y_2) - 4.0*(v_y_3*v_y_3);
+    out[2] = v__s4*v__c0 + v__s3 + v__s5*v_y_2 + v__s6*v_x_1*v_y_3 - 4.0*(v_y_2*v_y_2) - 4.0*(v_y_3*v_y_3);
 }
 
 /* Coefficients (A, B, C) of the generator solved for q1 (from B/T1 (leg T2's sphere generator pulled back by the symmetry)). */
@@ -190,9 +190,9 @@ BF_INLINE void _step4_q1(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__c0 = v_x_1*v_x_2;
     const double v__c1 = (v_x_1*v_x_1);
     const double v__c2 = (v_x_2*v_x_2);
-    out[0] = v__c0*v__s0 + 4.0*v__c1 + 12.0*v__c2 + 16.0;
+    out[0] = v__s0*v__c0 + 4.0*v__c1 + 12.0*v__c2 + 16.0;
     out[1] = 0.0;
-    out[2] = v__c0*v__s20 + v__c1*v__s16 + v__c2*v__s15 + v__s14 + v__s17*v_y_1 + v__s18*v_y_2 + v__s19*v_x_2*v_y_3 + v__s21*v_x_1*v_y_3 + v__s9*v_y_1*v_y_2 - 48.0*(v_y_1*v_y_1) - 16.0*(v_y_2*v_y_2) - 64.0*(v_y_3*v_y_3);
+    out[2] = v__s20*v__c0 + v__s16*v__c1 + v__s15*v__c2 + v__s14 + v__s17*v_y_1 + v__s18*v_y_2 + v__s19*v_x_2*v_y_3 + v__s21*v_x_1*v_y_3 + v__s9*v_y_1*v_y_2 - 48.0*(v_y_1*v_y_1) - 16.0*(v_y_2*v_y_2) - 64.0*(v_y_3*v_y_3);
 }
 
 /* Coefficients (A, B, C) of the generator solved for q3 (from B/T3 (leg T2's sphere generator pulled back by the symmetry)). */
@@ -243,9 +243,9 @@ BF_INLINE void _step5_q3(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__c0 = v_x_1*v_x_2;
     const double v__c1 = (v_x_1*v_x_1);
     const double v__c2 = (v_x_2*v_x_2);
-    out[0] = v__c0*v__s0 + 4.0*v__c1 + 12.0*v__c2 + 16.0;
+    out[0] = v__s0*v__c0 + 4.0*v__c1 + 12.0*v__c2 + 16.0;
     out[1] = 0.0;
-    out[2] = v__c0*v__s19 + v__c1*v__s16 + v__c2*v__s15 + v__s14 + v__s17*v_y_1 + v__s18*v_y_2 + v__s20*v_x_2*v_y_3 + v__s21*v_x_1*v_y_3 + v__s6*v_y_1*v_y_2 - 48.0*(v_y_1*v_y_1) - 16.0*(v_y_2*v_y_2) - 64.0*(v_y_3*v_y_3);
+    out[2] = v__s19*v__c0 + v__s16*v__c1 + v__s15*v__c2 + v__s14 + v__s17*v_y_1 + v__s18*v_y_2 + v__s20*v_x_2*v_y_3 + v__s21*v_x_1*v_y_3 + v__s6*v_y_1*v_y_2 - 48.0*(v_y_1*v_y_1) - 16.0*(v_y_2*v_y_2) - 64.0*(v_y_3*v_y_3);
 }
 
 /* Pivots dG_k/dq_k of the linear IK steps and their row scales (in Study coordinates). */
@@ -369,7 +369,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c5 = v__c0*v__c3 + 1.0;
     const double v__c6 = (1.0/(v__c5));
     const double v__c7 = v__c4*v__c6;
-    const double v__c8 = v__c7*v__s0;
+    const double v__c8 = v__s0*v__c7;
     const double v__c9 = (v__c4*v__c4);
     const double v__c10 = (v__c5*v__c5);
     const double v__c11 = (1.0/(v__c10));
@@ -392,8 +392,8 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c28 = 8.0*v__c22;
     const double v__c29 = v__c15*v__c20;
     const double v__c30 = v__c24*v__c29;
-    const double v__c31 = v__c27*v_q1 + v__c28*v_q1 + v__c30*v__s1*v_q1 + 32.0*v_q1;
-    const double v__c32 = v__c27*v_q3 + v__c28*v_q3 + v__c30*v__s2*v_q3 + 32.0*v_q3;
+    const double v__c31 = v__c27*v_q1 + v__c28*v_q1 + v__s1*v__c30*v_q1 + 32.0*v_q1;
+    const double v__c32 = v__c27*v_q3 + v__c28*v_q3 + v__s2*v__c30*v_q3 + 32.0*v_q3;
     const double v__c33 = fabs(v__c12);
     const double v__c34 = v__c26 + 1.0;
     const double v__c35 = v__c22 + v__c34;
@@ -410,7 +410,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c46 = (0.5)*v__c42;
     const double v__c47 = v__c44*(-4.0*v__c37*v__c39 + v__c40);
     const double v__c48 = -2.0*v__c43 - v__c46 - v__c47;
-    const double v__c49 = v__c7*v__s4;
+    const double v__c49 = v__s4*v__c7;
     const double v__c50 = -v__c22 + v__c34;
     const double v__c51 = v__c36*v__c50;
     const double v__c52 = (0.5)*v__c51;
@@ -425,13 +425,13 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c61 = v__c58*v__c6 - v__c60;
     const double v__c62 = 6.0*v_rb;
     const double v__c63 = 6.0*v__c7;
-    const double v__c64 = v__c40*v_rb + v_x;
+    const double v__c64 = v_rb*v__c40 + v_x;
     const double v__c65 = (1.0/(v__c14));
     const double v__c66 = v__c20*v__c65;
     const double v__c67 = v__c24*v__c65;
     const double v__c68 = v__c66 - v__c67;
     const double v__c69 = v__c66 + v__c67;
-    const double v__c70 = v__c36*v_rb;
+    const double v__c70 = v_rb*v__c36;
     const double v__c71 = v__c69*v__c70;
     const double v__c72 = v__c68*v__c71;
     const double v__c73 = v__c72 + v_y;
@@ -447,7 +447,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c83 = v__c36*v__c79;
     const double v__c84 = v__c30*v__c81 + v__c75*v__c83 + v__c82;
     const double v__c85 = v__c24*v__c36*v__c65*v__c79 - v__c30*v__c74 - v__c44*v__c84 - v__c46*v__c64;
-    const double v__c86 = v__c62 + v__c63*v_q4 + v__c85*v__s4 + v__s0*v_q4;
+    const double v__c86 = v__c62 + v__c63*v_q4 + v__s4*v__c85 + v__s0*v_q4;
     const double v__c87 = v__c61*v__c86;
     const double v__c88 = v__c19*v__c58;
     const double v__c89 = v__c5*v__c58;
@@ -487,7 +487,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c123 = v__c20*v__c70;
     const double v__c124 = v__c123*v__c24;
     const double v__c125 = v__c103*v__c124;
-    const double v__c126 = v__c114*v_rb;
+    const double v__c126 = v_rb*v__c114;
     const double v__c127 = v__c126*v__c30;
     const double v__c128 = 2.0*v__c121 + 2.0*v__c122 + 2.0*v__c125 + 2.0*v__c127;
     const double v__c129 = v__c65*v__c97;
@@ -573,7 +573,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c209 = v__c181*v__c70;
     const double v__c210 = v__c185*v__c70;
     const double v__c211 = v__c124*v__c188;
-    const double v__c212 = v__c198*v__c30*v_rb;
+    const double v__c212 = v_rb*v__c198*v__c30;
     const double v__c213 = 2.0*v__c209 + 2.0*v__c210 + 2.0*v__c211 + 2.0*v__c212;
     const double v__c214 = v__c198*v__c79;
     const double v__c215 = v__c204 + v__c207;
@@ -584,7 +584,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c220 = v__c140*v__c219;
     const double v__c221 = v__c215 - v__c216 - v__c217;
     const double v__c222 = v__c221*v__c71;
-    const double v__c223 = v__c144*v_rb;
+    const double v__c223 = v_rb*v__c144;
     const double v__c224 = v__c198*v__c223;
     const double v__c225 = v__c220 + v__c222 + v__c224;
     const double v__c226 = v__c149*v__c196;
@@ -638,7 +638,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c274 = v__c247*v__c70;
     const double v__c275 = v__c250*v__c70;
     const double v__c276 = v__c124*v__c253;
-    const double v__c277 = v__c263*v__c30*v_rb;
+    const double v__c277 = v_rb*v__c263*v__c30;
     const double v__c278 = 2.0*v__c274 + 2.0*v__c275 + 2.0*v__c276 + 2.0*v__c277;
     const double v__c279 = v__c263*v__c79;
     const double v__c280 = v__c269 + v__c272;
@@ -671,7 +671,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c307 = 3.0*v__c148*v__c7;
     const double v__c308 = 6.0*v__c66*v__c83;
     const double v__c309 = 6.0*v__c30*v__c80;
-    const double v__c310 = v__c62 + v__c85*v__s0;
+    const double v__c310 = v__c62 + v__s0*v__c85;
     const double v__c311 = -v__c306 + v__c307 - v__c308 - v__c309 + v__c310 + v__c63*v_q5 + v__s0*v_q5;
     const double v__c312 = v__c167*v__c302 + v__c168*v__c303 + v__c311*v__c61;
     const double v__c313 = v__c174*v__c311 + v__c236*v__c302 + v__c237*v__c303;
@@ -690,98 +690,98 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c326 = (0.5)*v__c66;
     const double v__c327 = v__c100*v__c123*v__c25;
     const double v__c328 = v__c325*v__c326 - 4.0*v__c327 + v__c72*v__c75 + 2.0*v__c78;
-    const double v__c329 = v__c323*v__c66 + v__c324 - 8.0*v__c327 + v__c66*v__s6;
+    const double v__c329 = v__c323*v__c66 + v__c324 - 8.0*v__c327 + v__s6*v__c66;
     const double v__c330 = v__c329*v__c39;
     const double v__c331 = v__c325*v__c53 + v__c330*v__c66;
     const double v__c332 = v__c30*v__c39;
     const double v__c333 = v__c325*v__c332 + v__c330*v__c67;
     const double v__c334 = (0.5)*v__c78;
-    const double v__c335 = v__c100*v__c20*v__c25*v__c36*v_rb - v__c326*v__c72 - v__c334;
-    const double v__c336 = v__c335*v__s6 + v__c66*v__s11 + v__c75*(v_q2*v_q2);
+    const double v__c335 = v_rb*v__c100*v__c20*v__c25*v__c36 - v__c326*v__c72 - v__c334;
+    const double v__c336 = v__s6*v__c335 + v__s11*v__c66 + v__c75*(v_q2*v_q2);
     const double v__c337 = pow(v__c14, -4.0);
     const double v__c338 = (0.5)*v__c72;
     const double v__c339 = (0.5)*v__c150;
     const double v__c340 = (0.5)*v__c159;
-    const double v__c341 = v__c100*v__c108*v__c20*v__c24*v__c36*v_rb + v__c100*v__c112*v__c113*v__c20*v__c25*v_rb + v__c100*v__c25*v__c36*v__c97*v_rb - v__c129*v__c338 - v__c132*v__c338 - v__c141*v__c326 - v__c143*v__c326 - v__c145*v__c326 - 0.5*v__c152 + v__c20*v__c25*v__c337*v__c36*v_rb*(-3.0*v__c101 - 6.0*v__c102) - v__c339 - v__c340;
-    const double v__c342 = (0.5)*v__c112*v__c113*v__c68*v__c69*v_rb - v__c129*v__c334 - v__c132*v__c334 + (0.5)*v__c139*v__c36*v__c68*v_rb + (0.5)*v__c142*v__c36*v__c69*v_rb - v__c152*v__c326 - v__c339*v__c66 - v__c340*v__c66;
+    const double v__c341 = v_rb*v__c100*v__c108*v__c20*v__c24*v__c36 + v_rb*v__c100*v__c112*v__c113*v__c20*v__c25 + v_rb*v__c100*v__c25*v__c36*v__c97 - v__c129*v__c338 - v__c132*v__c338 - v__c141*v__c326 - v__c143*v__c326 - v__c145*v__c326 - 0.5*v__c152 + v_rb*v__c20*v__c25*v__c337*v__c36*(-3.0*v__c101 - 6.0*v__c102) - v__c339 - v__c340;
+    const double v__c342 = (0.5)*v_rb*v__c112*v__c113*v__c68*v__c69 - v__c129*v__c334 - v__c132*v__c334 + (0.5)*v_rb*v__c139*v__c36*v__c68 + (0.5)*v_rb*v__c142*v__c36*v__c69 - v__c152*v__c326 - v__c339*v__c66 - v__c340*v__c66;
     const double v__c343 = v__c135*v__c336 + v__c325*v__c342 + v__c329*v__c341;
     const double v__c344 = (0.5)*v__c226;
     const double v__c345 = (0.5)*v__c229;
-    const double v__c346 = v__c100*v__c113*v__c197*v__c20*v__c25*v_rb + v__c100*v__c180*v__c25*v__c36*v_rb + v__c100*v__c193*v__c20*v__c24*v__c36*v_rb + v__c20*v__c25*v__c337*v__c36*v_rb*(6.0*v__c186 - 6.0*v__c187) - v__c204*v__c338 - v__c207*v__c338 - v__c220*v__c326 - v__c222*v__c326 - v__c224*v__c326 - 0.5*v__c227 - v__c344 - v__c345;
-    const double v__c347 = (0.5)*v__c113*v__c197*v__c68*v__c69*v_rb - v__c204*v__c334 - v__c207*v__c334 + (0.5)*v__c219*v__c36*v__c68*v_rb + (0.5)*v__c221*v__c36*v__c69*v_rb - v__c227*v__c326 - v__c344*v__c66 - v__c345*v__c66;
+    const double v__c346 = v_rb*v__c100*v__c113*v__c197*v__c20*v__c25 + v_rb*v__c100*v__c180*v__c25*v__c36 + v_rb*v__c100*v__c193*v__c20*v__c24*v__c36 + v_rb*v__c20*v__c25*v__c337*v__c36*(6.0*v__c186 - 6.0*v__c187) - v__c204*v__c338 - v__c207*v__c338 - v__c220*v__c326 - v__c222*v__c326 - v__c224*v__c326 - 0.5*v__c227 - v__c344 - v__c345;
+    const double v__c347 = (0.5)*v_rb*v__c113*v__c197*v__c68*v__c69 - v__c204*v__c334 - v__c207*v__c334 + (0.5)*v_rb*v__c219*v__c36*v__c68 + (0.5)*v_rb*v__c221*v__c36*v__c69 - v__c227*v__c326 - v__c344*v__c66 - v__c345*v__c66;
     const double v__c348 = v__c215*v__c336 + v__c325*v__c347 + v__c329*v__c346;
     const double v__c349 = (0.5)*v__c290;
     const double v__c350 = (0.5)*v__c293;
-    const double v__c351 = v__c100*v__c113*v__c20*v__c25*v__c262*v_rb + v__c100*v__c20*v__c24*v__c257*v__c36*v_rb + v__c100*v__c246*v__c25*v__c36*v_rb + v__c20*v__c25*v__c337*v__c36*v_rb*(6.0*v__c251 - 6.0*v__c252) - v__c269*v__c338 - v__c272*v__c338 - v__c285*v__c326 - v__c287*v__c326 - v__c288*v__c326 - 0.5*v__c291 - v__c349 - v__c350;
-    const double v__c352 = (0.5)*v__c113*v__c262*v__c68*v__c69*v_rb - v__c269*v__c334 - v__c272*v__c334 + (0.5)*v__c284*v__c36*v__c68*v_rb + (0.5)*v__c286*v__c36*v__c69*v_rb - v__c291*v__c326 - v__c349*v__c66 - v__c350*v__c66;
+    const double v__c351 = v_rb*v__c100*v__c113*v__c20*v__c25*v__c262 + v_rb*v__c100*v__c20*v__c24*v__c257*v__c36 + v_rb*v__c100*v__c246*v__c25*v__c36 + v_rb*v__c20*v__c25*v__c337*v__c36*(6.0*v__c251 - 6.0*v__c252) - v__c269*v__c338 - v__c272*v__c338 - v__c285*v__c326 - v__c287*v__c326 - v__c288*v__c326 - 0.5*v__c291 - v__c349 - v__c350;
+    const double v__c352 = (0.5)*v_rb*v__c113*v__c262*v__c68*v__c69 - v__c269*v__c334 - v__c272*v__c334 + (0.5)*v_rb*v__c284*v__c36*v__c68 + (0.5)*v_rb*v__c286*v__c36*v__c69 - v__c291*v__c326 - v__c349*v__c66 - v__c350*v__c66;
     const double v__c353 = v__c280*v__c336 + v__c325*v__c352 + v__c329*v__c351;
-    const double v__c354 = v__c67*v__s35;
+    const double v__c354 = v__s35*v__c67;
     const double v__c355 = -v__c334*v__c66 + v__c338;
-    const double v__c356 = v__c37*v_rb;
+    const double v__c356 = v_rb*v__c37;
     const double v__c357 = -96.0*v__c356 - 48.0*v__c67*v__c78;
-    const double v__c358 = v__c355*v__s17 + v__c357 + v__s19;
+    const double v__c358 = v__s17*v__c355 + v__c357 + v__s19;
     const double v__c359 = (0.5)*v__c67;
     const double v__c360 = v__c358*v__c359;
     const double v__c361 = v__c334*v__c67 + v__c356;
     const double v__c362 = 16.0*v__c66*v__c78 - 16.0*v__c72 + v__s18;
-    const double v__c363 = v__c361*v__s17 + v__c362;
+    const double v__c363 = v__s17*v__c361 + v__c362;
     const double v__c364 = v__c326*v__c363;
     const double v__c365 = 32.0*v__c78;
     const double v__c366 = 64.0*v__c327;
     const double v__c367 = v__c66*v__c72;
     const double v__c368 = 32.0*v__c367;
-    const double v__c369 = -v__c365 + v__c366 - v__c368 + v__c66*v__s36;
-    const double v__c370 = -128.0*v__c327 + 64.0*v__c367 + v__c66*v__s16 + 64.0*v__c78;
-    const double v__c371 = v__c370 + v__c67*v__s15;
+    const double v__c369 = -v__c365 + v__c366 - v__c368 + v__s36*v__c66;
+    const double v__c370 = -128.0*v__c327 + 64.0*v__c367 + v__s16*v__c66 + 64.0*v__c78;
+    const double v__c371 = v__c370 + v__s15*v__c67;
     const double v__c372 = v__c371*v__c39;
     const double v__c373 = -v__c15*v__c25*v__c358*v__c39 + v__c332*v__c363 + v__c372*v__c67;
     const double v__c374 = -v__c332*v__c358 + v__c363*v__c53 + v__c372*v__c66;
-    const double v__c375 = v__c67*v__s32;
+    const double v__c375 = v__s32*v__c67;
     const double v__c376 = (v_q1*v_q1);
     const double v__c377 = v__c376*v__c67;
     const double v__c378 = v__c376*v__c66;
-    const double v__c379 = v__c335*v__s15 + v__c375 + 24.0*v__c377 + v__c378*v__s25 + v__c66*v__s28;
-    const double v__c380 = v__c335*v__s16 + v__c66*v__s27;
-    const double v__c381 = v__c377*v__s25 + 8.0*v__c378 + v__c380 + v__c67*v__s28;
+    const double v__c379 = v__s15*v__c335 + v__c375 + 24.0*v__c377 + v__s25*v__c378 + v__s28*v__c66;
+    const double v__c380 = v__s16*v__c335 + v__s27*v__c66;
+    const double v__c381 = v__s25*v__c377 + 8.0*v__c378 + v__c380 + v__s28*v__c67;
     const double v__c382 = v__c121 + v__c122 + v__c125 + v__c127 + v__c136*v__c334 + v__c137*v__c334 + v__c152*v__c359 + v__c339*v__c67 + v__c340*v__c67;
     const double v__c383 = v__c135*v__c381 + v__c138*v__c379 + v__c341*v__c371 + v__c342*v__c363 + v__c358*v__c382;
     const double v__c384 = v__c209 + v__c210 + v__c211 + v__c212 + v__c216*v__c334 + v__c217*v__c334 + v__c227*v__c359 + v__c344*v__c67 + v__c345*v__c67;
     const double v__c385 = v__c215*v__c381 + v__c218*v__c379 + v__c346*v__c371 + v__c347*v__c363 + v__c358*v__c384;
     const double v__c386 = v__c274 + v__c275 + v__c276 + v__c277 + v__c281*v__c334 + v__c282*v__c334 + v__c291*v__c359 + v__c349*v__c67 + v__c350*v__c67;
     const double v__c387 = v__c280*v__c381 + v__c283*v__c379 + v__c351*v__c371 + v__c352*v__c363 + v__c358*v__c386;
-    const double v__c388 = v__c67*v__s49;
-    const double v__c389 = v__c355*v__s40 + v__c357 + v__s41;
+    const double v__c388 = v__s49*v__c67;
+    const double v__c389 = v__s40*v__c355 + v__c357 + v__s41;
     const double v__c390 = v__c359*v__c389;
-    const double v__c391 = v__c361*v__s40 + v__c362;
+    const double v__c391 = v__s40*v__c361 + v__c362;
     const double v__c392 = v__c326*v__c391;
-    const double v__c393 = v__c370 + v__c67*v__s39;
+    const double v__c393 = v__c370 + v__s39*v__c67;
     const double v__c394 = v__c39*v__c393;
     const double v__c395 = -v__c15*v__c25*v__c389*v__c39 + v__c332*v__c391 + v__c394*v__c67;
     const double v__c396 = -v__c332*v__c389 + v__c391*v__c53 + v__c394*v__c66;
     const double v__c397 = (v_q3*v_q3);
     const double v__c398 = v__c397*v__c67;
     const double v__c399 = v__c397*v__c66;
-    const double v__c400 = v__c335*v__s39 + v__c375 + 24.0*v__c398 + v__c399*v__s42 + v__c66*v__s46;
-    const double v__c401 = v__c380 + v__c398*v__s42 + 8.0*v__c399 + v__c67*v__s46;
+    const double v__c400 = v__s39*v__c335 + v__c375 + 24.0*v__c398 + v__s42*v__c399 + v__s46*v__c66;
+    const double v__c401 = v__c380 + v__s42*v__c398 + 8.0*v__c399 + v__s46*v__c67;
     const double v__c402 = v__c135*v__c401 + v__c138*v__c400 + v__c341*v__c393 + v__c342*v__c391 + v__c382*v__c389;
     const double v__c403 = v__c215*v__c401 + v__c218*v__c400 + v__c346*v__c393 + v__c347*v__c391 + v__c384*v__c389;
     const double v__c404 = v__c280*v__c401 + v__c283*v__c400 + v__c351*v__c393 + v__c352*v__c391 + v__c386*v__c389;
     const double v__c405 = (1.0/(v__c31));
-    const double v__c406 = v__c365 - v__c366 + v__c368 + v__c66*v__s50;
+    const double v__c406 = v__c365 - v__c366 + v__c368 + v__s50*v__c66;
     const double v__c407 = (1.0/(v__c23));
     const double v__c408 = (1.0/(v__c32));
     const double v__c409 = (1.0/(v__c12));
-    const double v__c410 = v__c7*v__s3;
+    const double v__c410 = v__s3*v__c7;
     out[0] = v__c12;
     out[1] = v__c12;
     out[2] = v__c12;
     out[3] = v__c23;
     out[4] = v__c31;
     out[5] = v__c32;
-    out[6] = v__c33 + fabs(v__c45*v__s3 + v__c48*v__c49) + fabs(v__c49*v__c56 + v__c55*v__s3) + fabs(v__c175 + v__c236*v__s3 + v__c237*v__c49) + fabs(v__c244 + v__c300*v__s3 + v__c301*v__c49) + fabs(v__c167*v__s3 + v__c168*v__c49 + v__c87);
+    out[6] = v__c33 + fabs(v__s3*v__c45 + v__c48*v__c49) + fabs(v__c49*v__c56 + v__s3*v__c55) + fabs(v__c175 + v__s3*v__c236 + v__c237*v__c49) + fabs(v__c244 + v__s3*v__c300 + v__c301*v__c49) + fabs(v__s3*v__c167 + v__c168*v__c49 + v__c87);
     out[7] = v__c33 + fabs(v__c304) + fabs(v__c305) + fabs(v__c312) + fabs(v__c313) + fabs(v__c314);
     out[8] = v__c33 + fabs(v__c317) + fabs(v__c318) + fabs(v__c320) + fabs(v__c321) + fabs(v__c322);
-    out[9] = fabs(v__c23) + fabs(v__c331) + fabs(v__c333) + fabs(v__c343) + fabs(v__c348) + fabs(v__c353) + fabs(v__c20*v__c65*v__s12 - v__c328);
+    out[9] = fabs(v__c23) + fabs(v__c331) + fabs(v__c333) + fabs(v__c343) + fabs(v__c348) + fabs(v__c353) + fabs(v__s12*v__c20*v__c65 - v__c328);
     out[10] = fabs(v__c31) + fabs(v__c373) + fabs(v__c374) + fabs(v__c383) + fabs(v__c385) + fabs(v__c387) + fabs(v__c354 + v__c360 - v__c364 + v__c369);
     out[11] = fabs(v__c32) + fabs(v__c395) + fabs(v__c396) + fabs(v__c402) + fabs(v__c403) + fabs(v__c404) + fabs(v__c369 + v__c388 + v__c390 - v__c392);
     out[12] = v__c373*v__c405;
@@ -792,7 +792,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     out[17] = -v__c383*v__c405;
     out[18] = v__c333*v__c407;
     out[19] = -v__c331*v__c407;
-    out[20] = v__c407*(v__c328 + v__c66*v__s51);
+    out[20] = v__c407*(v__c328 + v__s51*v__c66);
     out[21] = -v__c348*v__c407;
     out[22] = -v__c353*v__c407;
     out[23] = -v__c343*v__c407;
@@ -802,12 +802,12 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     out[27] = -v__c403*v__c408;
     out[28] = -v__c404*v__c408;
     out[29] = -v__c402*v__c408;
-    out[30] = v__c409*(v__c410*v__c48 + v__c45*v__s4);
-    out[31] = v__c409*(v__c410*v__c56 + v__c55*v__s4);
+    out[30] = v__c409*(v__c410*v__c48 + v__s4*v__c45);
+    out[31] = v__c409*(v__c410*v__c56 + v__s4*v__c55);
     out[32] = 0.0;
-    out[33] = v__c409*(-v__c175 + v__c236*v__s4 + v__c237*v__c410);
-    out[34] = v__c409*(-v__c244 + v__c300*v__s4 + v__c301*v__c410);
-    out[35] = v__c409*(v__c167*v__s4 + v__c168*v__c410 - v__c87);
+    out[33] = v__c409*(-v__c175 + v__s4*v__c236 + v__c237*v__c410);
+    out[34] = v__c409*(-v__c244 + v__s4*v__c300 + v__c301*v__c410);
+    out[35] = v__c409*(v__s4*v__c167 + v__c168*v__c410 - v__c87);
     out[36] = -v__c304*v__c409;
     out[37] = -v__c305*v__c409;
     out[38] = 0.0;
@@ -852,12 +852,12 @@ BF_INLINE void _limit_values(double v__f0, double v__f1, double v__f2, double v_
     const double v__c14 = v__c13 + 1.0;
     const double v__c15 = v__c11 + v__c14;
     const double v__c16 = (1.0/(v__c15));
-    const double v__c17 = v__c16*v_rb;
+    const double v__c17 = v_rb*v__c16;
     const double v__c18 = v__c10*v__c12*v__c7;
     const double v__c19 = v__c17*v__c18;
     const double v__c20 = -3.0*v__c19;
     const double v__c21 = v__c16*(-v__c11 + v__c14);
-    const double v__c22 = v__c20 + v__c21*v__s0 + v__s1;
+    const double v__c22 = v__c20 + v__s0*v__c21 + v__s1;
     const double v__c23 = v__c16*v__c18;
     const double v__c24 = v__c11 - v__c13 + 1.0;
     const double v__c25 = (1.0/(v__c6));
@@ -865,21 +865,21 @@ BF_INLINE void _limit_values(double v__f0, double v__f1, double v__f2, double v_
     const double v__c27 = v__c12*v__c25;
     const double v__c28 = v__c17*(-v__c26 + v__c27)*(v__c26 + v__c27);
     const double v__c29 = -0.5*v__c17*v__c24 - v__c28 + (0.5)*v_ra;
-    const double v__c30 = v__c23*v__s3 + v__c29;
+    const double v__c30 = v__s3*v__c23 + v__c29;
     const double v__c31 = v__c16*v__c26;
     const double v__c32 = -v__c11 - v__c13 + 1.0;
     const double v__c33 = 2.0*v__c16*v__c27;
     const double v__c34 = v__c15*(2.0*v__c10*v__c16*v__c25*(2.0*v__c19 + v_x) + v__c16*v__c32*v_z - v__c33*(v__c28 + v_y) - v_d)/v__c32;
     const double v__c35 = v__c17*v__c27;
     const double v__c36 = v__c34 - v__c35;
-    const double v__c37 = v__c31*v__s2 + v__c36;
+    const double v__c37 = v__s2*v__c31 + v__c36;
     const double v__c38 = 2.0*v__c31;
     const double v__c39 = v__c16*v__c32;
-    const double v__c40 = v__c16*v__c24*v_rb - v__c28 - v_ra;
+    const double v__c40 = v_rb*v__c16*v__c24 - v__c28 - v_ra;
     const double v__c41 = v__c34 + 2.0*v__c35;
-    const double v__c42 = v__c20 + v__c21*v__s4 + v__s5;
-    const double v__c43 = v__c23*v__s2 + v__c29;
-    const double v__c44 = v__c31*v__s3 + v__c36;
+    const double v__c42 = v__c20 + v__s4*v__c21 + v__s5;
+    const double v__c43 = v__s2*v__c23 + v__c29;
+    const double v__c44 = v__s3*v__c31 + v__c36;
     out[0] = v_q1;
     out[1] = v_q2;
     out[2] = v_q3;

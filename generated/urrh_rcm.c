@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2b323be7716034f3e7a8ec686c7370b8352c01b1e3a567f52737cb7aff65d945
+ * Derivation hash: ef3bf0c862e3558668eb7650d9929907c062e52784c8fbb698425befbdcb82eb
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "2b323be7716034f3e7a8ec686c7370b8352c01b1e3a567f52737cb7aff65d945";
+const char bonered_derivation_hash[] = "ef3bf0c862e3558668eb7650d9929907c062e52784c8fbb698425befbdcb82eb";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */
@@ -23,7 +23,7 @@ BF_INLINE void _study(double v__f0, double v__f1, double v_theta1, double v_thet
     out[0] = v__f0;
     out[1] = v__f1;
     out[2] = v_d;
-    out[3] = v_d - v_gamma*v_p;
+    out[3] = v_d - v_p*v_gamma;
 }
 
 /* Coefficients (A, B, C) of the generator solved for a1 (from shaft/1). */
@@ -66,9 +66,9 @@ BF_INLINE void _step2_b1(double v_w1, double v_w2, double v_d1, double v_d2, dou
     const double v__c1 = v_d1*v_w2;
     const double v__c2 = (v_d1*v_d1);
     const double v__c3 = -v__c0*v__c2 - v__c2;
-    out[0] = v__c0*v__s4 + v__c1*v__s5 + v__c3 + v__s4;
-    out[1] = -4.0*v_d1*v_lab1*(v_w2 - 1.0)*(v_w2 + 1.0);
-    out[2] = v__c0*v__s7 + v__c1*v__s8 + v__c3 + v__s7;
+    out[0] = v__s4*v__c0 + v__s5*v__c1 + v__c3 + v__s4;
+    out[1] = -4.0*v_lab1*v_d1*(v_w2 - 1.0)*(v_w2 + 1.0);
+    out[2] = v__s7*v__c0 + v__s8*v__c1 + v__c3 + v__s7;
 }
 
 /* Coefficients (A, B, C) of the generator solved for b2 (from shaft/2). */
@@ -96,7 +96,7 @@ BF_INLINE void _step3_b2(double v_w1, double v_w2, double v_d1, double v_d2, dou
     const double v__s9 = -v__k9;
     const double v__s10 = v__k9;
     const double v__c0 = (v_w1*v_w1);
-    const double v__c1 = v__c0*v__s4;
+    const double v__c1 = v__s4*v__c0;
     const double v__c2 = (v_w2*v_w2);
     const double v__c3 = v_d2*v_w1;
     const double v__c4 = v__c2*v__c3;
@@ -105,9 +105,9 @@ BF_INLINE void _step3_b2(double v_w1, double v_w2, double v_d1, double v_d2, dou
     const double v__c7 = v__c2*v__c5 + v__c2*v__c6 + v__c5 + v__c6;
     const double v__c8 = 2.0*v_a2*v_w2;
     const double v__c9 = v__c0*v__c2;
-    out[0] = v__c1*v__c2 + v__c1 + v__c2*v__s4 + v__c3*v__s5 + v__c4*v__s6 + v__c7 + v__s4;
-    out[1] = 4.0*v_d2*v_lab2*(v__c0*v__c8 - v__c0 - v__c2 + v__c8 + v__c9 + 1.0);
-    out[2] = v__c0*v__s8 + v__c2*v__s8 + v__c3*v__s9 + v__c4*v__s10 + v__c7 + v__c9*v__s8 + v__s8;
+    out[0] = v__c1*v__c2 + v__c1 + v__s4*v__c2 + v__s5*v__c3 + v__s6*v__c4 + v__c7 + v__s4;
+    out[1] = 4.0*v_lab2*v_d2*(v__c0*v__c8 - v__c0 - v__c2 + v__c8 + v__c9 + 1.0);
+    out[2] = v__s8*v__c0 + v__s8*v__c2 + v__s9*v__c3 + v__s10*v__c4 + v__c7 + v__s8*v__c9 + v__s8;
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
@@ -178,9 +178,9 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     const double v__c12 = 2.0*(v_d*v_d);
     const double v__c13 = v__c12*v_b1;
     const double v__c14 = v__c0*v_b1*v_d;
-    const double v__c15 = -v__c1*v__c11 - v__c1*v__c13 + v__c1*v__c9 + v__c11 - v__c13 + v__c14*v__s5 + v__c9;
+    const double v__c15 = -v__c1*v__c11 - v__c1*v__c13 + v__c1*v__c9 + v__c11 - v__c13 + v__s5*v__c14 + v__c9;
     const double v__c16 = v__s10*v_b2;
-    const double v__c17 = v_gamma*v_p;
+    const double v__c17 = v_p*v_gamma;
     const double v__c18 = -v__c17 + v_d;
     const double v__c19 = 4.0*v_lab2;
     const double v__c20 = v__c18*v__c19;
@@ -193,7 +193,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     const double v__c27 = v__c26*v_a2;
     const double v__c28 = v__c1*v__c18;
     const double v__c29 = v__c23*v__c28;
-    const double v__c30 = v__c1*v__c16 - v__c1*v__c20 + v__c1*v__c22 + v__c16*v__c3 + v__c16*v__c4 + v__c16 - v__c20*v__c3 + v__c20*v__c4 + v__c20 + v__c22*v__c3 + v__c22*v__c4 + v__c22 + v__c24*v__s11 + v__c27*v__c3 + v__c27 + v__c29*v__s12;
+    const double v__c30 = v__c1*v__c16 - v__c1*v__c20 + v__c1*v__c22 + v__c16*v__c3 + v__c16*v__c4 + v__c16 - v__c20*v__c3 + v__c20*v__c4 + v__c20 + v__c22*v__c3 + v__c22*v__c4 + v__c22 + v__s11*v__c24 + v__c27*v__c3 + v__c27 + v__s12*v__c29;
     const double v__c31 = (0.5)*v__c3 + 0.5;
     const double v__c32 = (0.5)*v__c1 + 0.5;
     const double v__c33 = (v_a2*v_a2);
@@ -209,10 +209,10 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     const double v__c43 = v__c1*v__c40 + v__c1*v__c41 + v__c1*v__c42 + v__c40 - v__c41 + v__c42;
     const double v__c44 = v__c0*v__c12;
     const double v__c45 = v__c0*v__c39;
-    const double v__c46 = v__c32*(v__c0*v__s15 - 8.0*v__c14*v_lab1 - v__c39*v__c44 + v__c39*v__s17*v_d - v__c44 + v__c45*v__s4 + v__s16*v_d);
-    const double v__c47 = v__c0*v__s19;
+    const double v__c46 = v__c32*(v__s15*v__c0 - 8.0*v_lab1*v__c14 - v__c39*v__c44 + v__s17*v__c39*v_d - v__c44 + v__s4*v__c45 + v__s16*v_d);
+    const double v__c47 = v__s19*v__c0;
     const double v__c48 = (v_b2*v_b2);
-    const double v__c49 = v__c48*v__s10;
+    const double v__c49 = v__s10*v__c48;
     const double v__c50 = v__c0*v__c49;
     const double v__c51 = v_a2*v_b2;
     const double v__c52 = v__c25*v__c51;
@@ -223,7 +223,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     const double v__c57 = v__c48*v__c54;
     const double v__c58 = v__c18*v__c48;
     const double v__c59 = v__c3*v__c55;
-    const double v__c60 = v__c32*(v__c3*v__c47 + v__c3*v__c50 + v__c3*v__c53 + v__c3*v__c54 + v__c3*v__c57 + v__c36*v__c58*v__s12 + v__c47 + v__c50 + v__c53 + v__c54 - v__c55 + v__c56*v__s24 + v__c57 + v__c59);
+    const double v__c60 = v__c32*(v__c3*v__c47 + v__c3*v__c50 + v__c3*v__c53 + v__c3*v__c54 + v__c3*v__c57 + v__s12*v__c36*v__c58 + v__c47 + v__c50 + v__c53 + v__c54 - v__c55 + v__s24*v__c56 + v__c57 + v__c59);
     const double v__c61 = v__c2*v__c48;
     const double v__c62 = 2.0*v__c58;
     const double v__c63 = 2.0*v__c18;
@@ -231,13 +231,13 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     const double v__c65 = v__c19*v_b2;
     const double v__c66 = v__c0*v__c52;
     const double v__c67 = -v__c1*v__c65 - 2.0*v__c17 + v__c3*v__c62 + v__c3*v__c63 - v__c3*v__c65 + v__c3*v__c66 + v__c4*v__c62 + v__c4*v__c63 + v__c4*v__c65 + v__c40 + v__c48*v__c64 + v__c62 + v__c64 + v__c65 + v__c66;
-    const double v__c68 = v__c1*v__c2*v__s21 + v__c1*v__c61*v__s23 + v__c2*v__s20 + v__c61*v__s22 + v__c67;
-    const double v__c69 = v__c2*v__s19;
+    const double v__c68 = v__s21*v__c1*v__c2 + v__s23*v__c1*v__c61 + v__s20*v__c2 + v__s22*v__c61 + v__c67;
+    const double v__c69 = v__s19*v__c2;
     const double v__c70 = v__c2*v__c49;
     const double v__c71 = v__c2*v__c21;
     const double v__c72 = v__c48*v__c71;
-    const double v__c73 = v__c31*(v__c1*v__c69 + v__c1*v__c70 + v__c1*v__c71 + v__c1*v__c72 + v__c18*v__s20 - v__c24*v__c25 + v__c25*v__c29 + v__c28*v__c48*v__s23 + v__c28*v__s21 + 16.0*v__c51*v__c56*v_lab2 + v__c58*v__s22 + v__c69 + v__c70 + v__c71 + v__c72);
-    const double v__c74 = v__c68*v_p;
+    const double v__c73 = v__c31*(v__c1*v__c69 + v__c1*v__c70 + v__c1*v__c71 + v__c1*v__c72 + v__s20*v__c18 - v__c24*v__c25 + v__c25*v__c29 + v__s23*v__c28*v__c48 + v__s21*v__c28 + 16.0*v_lab2*v__c51*v__c56 + v__s22*v__c58 + v__c69 + v__c70 + v__c71 + v__c72);
+    const double v__c74 = v_p*v__c68;
     const double v__c75 = (1.0/(v__c8));
     const double v__c76 = v__c38*v__c75;
     const double v__c77 = v__c34*v__c75;
@@ -250,7 +250,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     out[3] = v__c30;
     out[4] = v__s13 + fabs(v__c31);
     out[5] = fabs(v__c34) + fabs(v__c38) + fabs(v__c8);
-    out[6] = fabs(v__c15) + fabs(v__c46) + fabs(v__c0*v__c39*v__s17 + v__c0*v__s16 - v__c43);
+    out[6] = fabs(v__c15) + fabs(v__c46) + fabs(v__s17*v__c0*v__c39 + v__s16*v__c0 - v__c43);
     out[7] = fabs(v__c30) + fabs(v__c60) + fabs(v__c68) + fabs(v__c73) + fabs(v__c74);
     out[8] = v__c31;
     out[9] = 0.0;
@@ -262,11 +262,11 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     out[15] = 0.0;
     out[16] = 0.0;
     out[17] = -v__c46*v__c78;
-    out[18] = v__c78*(v__c0*v__s25 + v__c43 + v__c45*v__s26);
+    out[18] = v__c78*(v__s25*v__c0 + v__c43 + v__s26*v__c45);
     out[19] = 0.0;
     out[20] = v__c79*(-v__c73 + v__c76*v__c80);
     out[21] = v__c79*(-v__c60 + v__c77*v__c80);
-    out[22] = v__c79*(v__c1*v__c2*v__c48*v__s22 + v__c1*v__c2*v__s20 + v__c2*v__c48*v__s23 + v__c2*v__s21 - v__c67);
+    out[22] = v__c79*(v__s22*v__c1*v__c2*v__c48 + v__s20*v__c1*v__c2 + v__s23*v__c2*v__c48 + v__s21*v__c2 - v__c67);
     out[23] = v__c74*v__c79;
 }
 
@@ -274,7 +274,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
 BF_INLINE void _limit_values(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_a1, double v_a2, double v_b1, double v_b2, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
 {
     out[0] = v_d;
-    out[1] = v_d - v_gamma*v_p;
+    out[1] = v_d - v_p*v_gamma;
 }
 
 static void solve_block(int m, const double *restrict pose, const double *restrict par,

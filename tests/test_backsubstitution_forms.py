@@ -102,7 +102,7 @@ def test_generated_steps_as_the_detailed_form(name):
     poses = centre + rng.uniform(-1.0, 1.0, (3000, len(m.POSE))) * scale
     poses[::97, 0] = np.nan
     par = [m.PARAMETERS[k] for k in m.PARAMETERS]
-    study = stacked(model.study(*poses.T, *par), poses.shape[:-1])
+    study = stacked(model.study_values(poses, par), poses.shape[:-1])
     codes = set()
     for mode in range(min(model.modes, 8)):
         args = (study, model.steps, model.solve_index, len(model.joints), mode, par)

@@ -67,6 +67,68 @@ def test_sums_are_grouped_by_their_array_factors():
     assert counts[1] < counts[0], counts
 
 
+class _Counted(np.ndarray):
+    """An array that counts the numpy ufunc calls with it as an operand."""
+
+    calls = 0
+
+    def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
+        _Counted.calls += 1
+        inputs = [np.asarray(v) if isinstance(v, _Counted) else v for v in inputs]
+        return getattr(ufunc, method)(*inputs, **kwargs).view(_Counted)
+
+
+def _array_calls(f, *args):
+    _Counted.calls = 0
+    f(*[a.view(_Counted) if isinstance(a, np.ndarray) else a for a in args])
+    return _Counted.calls
+
+
+def test_scalar_factors_are_multiplied_first():
+    """kernels._print_mul_scalars_first: ``2 rb t u`` with ``t``, ``u`` array temporaries is
+    printed with the parameter first, so the scalar product is formed once and the arrays
+    take two multiplications (sympy's order, ``2.0*_c0*_c1*rb``, takes three); the values
+    are those of sympy's order, and the C source orders its product alike."""
+    x, y, rb = sp.symbols("x y rb", real=True)
+    t, u = sp.tan(x), sp.tan(y)
+    outs = [2 * rb * t * u + t, t * u - rb * t / sp.cos(x) ** 2]
+    k = kernel("_k", [x, y, rb], outs, "", c=True, scalars=[rb])
+    plain = kernel("_p", [x, y, rb], outs, "")
+    assert "2.0*rb*_c" in k.source and "2.0*v_rb*v__c" in k.c_source
+    assert "rb*_c0/" in k.source
+    f = {}
+    exec(k.source + plain.source, {"numpy": np}, f)
+    xs, ys = np.linspace(-1, 1, 9), np.linspace(0.2, 1.1, 9)
+    for a, b in zip(f["_k"](xs, ys, 1.5), f["_p"](xs, ys, 1.5)):
+        np.testing.assert_allclose(a, b, rtol=1e-15, atol=0)
+    assert _array_calls(f["_k"], xs, ys, 1.5) < _array_calls(f["_p"], xs, ys, 1.5)
+
+
+def test_generated_modules_compute_the_pose_functions_once():
+    """codegen.module._pose_sharing: the Study map, the Jacobian and the limits of a
+    generated module take tan(alpha/2), ... from ``_shared`` instead of each computing them;
+    the kernels under their old names (wrappers) give the same numbers."""
+    import inspect
+
+    from bonered_alg.generated import planar_tripod as m
+
+    assert m._MODEL.shared is m._shared and m._MODEL.study is m._study_of
+    assert m._MODEL.jac is m._jac_of and m._MODEL.limit_kernel is m._limit_values_of
+    for name in ("_study_of", "_jac_of", "_limit_values_of"):
+        assert "numpy.tan" not in inspect.getsource(getattr(m, name)), name
+    rng = np.random.default_rng(3)
+    pose = [rng.uniform(-0.5, 0.5, 5) for _ in m.POSE]
+    q = [rng.uniform(100, 200, 5) for _ in m.JOINTS]
+    par = list(m.PARAMETERS.values())
+    f = m._shared(*pose, *par)
+    for a, b in zip(m._jac(*pose, *q, *par), m._jac_of(*f, *pose, *q, *par)):
+        np.testing.assert_array_equal(a, b)
+    # the shared values are the tangents of the half angles (alpha, beta, gamma), as numpy
+    # computes them
+    for v, angle in zip(f, pose[3:]):
+        np.testing.assert_array_equal(v, np.tan(0.5 * angle))
+
+
 def test_definite_leading_coefficients():
     x, y = sp.symbols("x y", real=True)
     assert _definite(1 + x**2)

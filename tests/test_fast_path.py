@@ -175,15 +175,19 @@ def test_elementary_functions_several_c_kernels_take_are_computed_once():
     is left where it is."""
     import sympy as sp
 
-    from bonered_alg.codegen.c_module import _shared_functions
-    from bonered_alg.codegen.kernels import c_function, kernel, shareable_functions
+    from bonered_alg.codegen.kernels import (
+        c_function,
+        kernel,
+        shareable_functions,
+        shared_functions,
+    )
 
     a, b, q = sp.symbols("alpha beta q", real=True)
     k1 = kernel("_k1", [a, b], [sp.tan(a / 2) ** 2 + sp.tan(a / 2), sp.cos(b)], "", c=True)
     k2 = kernel("_k2", [a, b, q], [sp.tan(a / 2) * q + sp.sin(q), sp.tan(a / 2 + q)], "",
                 c=True)
     found = [shareable_functions(k, {"alpha", "beta"}) for k in (k1, k2)]
-    shared = _shared_functions(found)
+    shared = shared_functions(found)
     assert shared == [sp.tan(a / 2)]
     f = {shared[0]: sp.Symbol("_f0")}
     for k, applications in zip((k1, k2), found):

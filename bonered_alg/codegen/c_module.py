@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
-from .kernels import Kernel, c_function, c_values, shareable_functions
+from .kernels import Kernel, c_function, c_values, shareable_functions, shared_functions
 
 # the C entry point's contract with bonered_alg.runtime.compiled
 C_ABI = 3
@@ -34,17 +34,6 @@ def _call(k: Kernel, args: Sequence[str], out: str, expected: int) -> str:
     if len(args) != expected:
         raise ValueError(f"{k.name}: {len(args)} arguments for {expected}")
     return f"{k.name}({', '.join([*args, out])});"
-
-
-def _shared_functions(found: Sequence[dict[sp.Expr, list[sp.Expr]]]) -> list[sp.Expr]:
-    """tan, sin and cos of the pose that two or more kernels compute (``found``: each
-    kernel's :func:`shareable_functions`; the Study map, the Jacobian and the limits all
-    take tan(angle/2) of the pose's angles), in a deterministic order."""
-    count: dict[sp.Expr, int] = {}
-    for applications in found:
-        for full in applications:
-            count[full] = count.get(full, 0) + 1
-    return sorted((f for f, c in count.items() if c > 1), key=sp.srepr)
 
 
 def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[str],
@@ -67,7 +56,7 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
     par = [f"par[{i}]" for i in range(npar)]
     pose_kernels = [k for k in (study, jac, limits_kernel) if k is not None]
     found = [shareable_functions(k, {*pose, *parameters}) for k in pose_kernels]
-    shared = _shared_functions(found)
+    shared = shared_functions(found)
     fsyms = {f: sp.Symbol(f"_f{i}") for i, f in enumerate(shared)}
     F = [f"F[{i}][i]" for i in range(len(shared))]
     by_sym = dict(zip(fsyms.values(), F))

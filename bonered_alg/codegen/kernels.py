@@ -12,9 +12,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import sympy as sp
+from sympy.core.mul import _keep_coeff
 from sympy.printing.c import C99CodePrinter
 from sympy.printing.numpy import NumPyPrinter
-from sympy.printing.precedence import PRECEDENCE
+from sympy.printing.precedence import PRECEDENCE, precedence
 
 
 def _float_literal(value: float) -> str:
@@ -34,8 +35,62 @@ def _number(expr) -> str | None:
     return None
 
 
+def _print_mul_scalars_first(printer, expr, scalars: frozenset) -> str | None:
+    """``expr`` (a Mul) written with its factors that are one number per call (``scalars``:
+    the parameters and the hoisted ``_k``/``_s`` values) before its array factors: the
+    product is evaluated left to right, so ``2.0*rb*_c3`` is one array operation where
+    sympy's order, ``2.0*_c3*rb`` (the temporaries sort first), is two.  Written as
+    sympy's code printers write a product (``CodePrinter._print_Mul``); None where the
+    order stays sympy's."""
+    c, e = expr.as_coeff_Mul()
+    sign = ""
+    if c < 0:
+        expr, sign = _keep_coeff(-c, e), "-"
+    factors = expr.as_ordered_factors()
+    first = [f for f in factors if f.is_Number or (
+        f.free_symbols and {v.name for v in f.free_symbols} <= scalars)]
+    args = first + [f for f in factors if f not in first]
+    if args == factors:  # nothing to move: sympy's own printing
+        return None
+    prec = precedence(expr)
+    a, b, pow_paren = [], [], []  # numerator, denominator, as there
+    for item in args:
+        if item.is_commutative and item.is_Pow and item.exp.is_Rational and item.exp.is_negative:
+            if item.exp != -1:
+                b.append(sp.Pow(item.base, -item.exp, evaluate=False))
+            else:
+                if len(item.args[0].args) != 1 and isinstance(item.base, sp.Mul):
+                    pow_paren.append(item)
+                b.append(sp.Pow(item.base, -item.exp))
+        else:
+            a.append(item)
+    a = a or [sp.S.One]
+    if len(a) == 1 and sign == "-":
+        a_str = [printer.parenthesize(a[0], 0.5 * (PRECEDENCE["Pow"] + PRECEDENCE["Mul"]))]
+    else:
+        a_str = [printer.parenthesize(x, prec) for x in a]
+    b_str = [printer.parenthesize(x, prec) for x in b]
+    for item in pow_paren:
+        if item.base in b:
+            b_str[b.index(item.base)] = f"({b_str[b.index(item.base)]})"
+    if not b:
+        return sign + "*".join(a_str)
+    if len(b) == 1:
+        return sign + "*".join(a_str) + "/" + b_str[0]
+    return sign + "*".join(a_str) + "/(" + "*".join(b_str) + ")"
+
+
 class _Printer(NumPyPrinter):
-    """NumPyPrinter writing ``numpy.<fn>`` calls and exact rationals as float literals."""
+    """NumPyPrinter writing ``numpy.<fn>`` calls and exact rationals as float literals;
+    ``scalars`` (symbol names) are written first in a product."""
+
+    def __init__(self, settings=None, scalars: frozenset = frozenset()):
+        super().__init__(settings or {})
+        self.scalars = scalars
+
+    def _print_Mul(self, expr):  # noqa: N802
+        out = _print_mul_scalars_first(self, expr, self.scalars) if self.scalars else None
+        return super()._print_Mul(expr) if out is None else out
 
     def _print_Rational(self, expr):  # noqa: N802 - sympy printer protocol
         return repr(float(expr.p) / float(expr.q)) if expr.q != 1 else f"{expr.p}.0"
@@ -79,7 +134,17 @@ def _small_power(printer, expr) -> str | None:
 
 class _CPrinter(C99CodePrinter):
     """C99 for the fast path: the same literals and integer powers as :class:`_Printer`;
-    every variable prefixed ``v_`` (no clash with ``gamma``, ``y1`` or ``j0`` of libm)."""
+    every variable prefixed ``v_`` (no clash with ``gamma``, ``y1`` or ``j0`` of libm);
+    ``scalars`` first in a product, as there (the compiler then hoists ``2.0*v_rb`` out of
+    the loop over poses)."""
+
+    def __init__(self, settings=None, scalars: frozenset = frozenset()):
+        super().__init__(settings or {})
+        self.scalars = scalars
+
+    def _print_Mul(self, expr):  # noqa: N802
+        out = _print_mul_scalars_first(self, expr, self.scalars) if self.scalars else None
+        return super()._print_Mul(expr) if out is None else out
 
     def _print_Symbol(self, expr):  # noqa: N802
         return f"v_{expr.name}"
@@ -120,6 +185,8 @@ class Kernel:
     # :func:`c_function` prints again with shared values passed in
     program: tuple = field(default=(), compare=False, repr=False)
     doc: str = ""
+    # the names of its one-number-per-call values (parameters, hoisted coefficients)
+    scalars: frozenset = field(default=frozenset(), compare=False, repr=False)
 
 
 def scalar_coefficients(expr: sp.Expr, scalars: set[sp.Symbol],
@@ -251,7 +318,6 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
     """Emit ``def name(*args): ... return (out0, out1, ...)`` with CSE; with ``c``, also
     ``BF_INLINE void name(double v_arg, ..., double *restrict out)`` from the same program.
     ``scalars``: the arguments that are one number per call (:func:`scalar_coefficients`)."""
-    printer = _Printer({"fully_qualified_modules": True, "allow_unknown_functions": False})
     exprs = [sp.sympify(o) for o in outputs]
     first: list = []  # the scalar coefficients, computed before the array program
     if scalars:
@@ -261,8 +327,20 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
             ksubs, kred = sp.cse(list(hoisted), symbols=sp.numbered_symbols("_k"),
                                  order="canonical")
             first = list(ksubs) + list(zip(hoisted.values(), kred))
+    scalar_names = frozenset([str(a) for a in scalars] + [sym.name for sym, _ in first])
     subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_c"), order="canonical")
     subs = first + list(subs)
+    source, ops = _numpy_function(name, args, subs, reduced, doc, scalar_names)
+    c_source = _c_function(name, args, subs, reduced, doc, scalar_names) if c else ""
+    return Kernel(name, source, ops, c_source,
+                  tuple(str(a) for a in args), len(reduced),
+                  (tuple(args), tuple(subs), tuple(reduced)) if c else (), doc, scalar_names)
+
+
+def _numpy_function(name, args, subs, reduced, doc, scalars: frozenset) -> tuple[str, int]:
+    """The numpy source of a common-subexpression program and its operation count."""
+    printer = _Printer({"fully_qualified_modules": True, "allow_unknown_functions": False},
+                       scalars=scalars)
     lines = [f"def {name}({', '.join(str(a) for a in args)}):", f'    """{doc}"""']
     ops = 0
     # each array temporary is released after its last use: the kernel's working set is then
@@ -280,10 +358,7 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
         outs.append(printer.doprint(expr))
         ops += int(sp.count_ops(expr))
     lines.append(f"    return ({', '.join(outs)},)")
-    c_source = _c_function(name, args, subs, reduced, doc) if c else ""
-    return Kernel(name, "\n".join(lines) + "\n", ops, c_source,
-                  tuple(str(a) for a in args), len(reduced),
-                  (tuple(args), tuple(subs), tuple(reduced)) if c else (), doc)
+    return "\n".join(lines) + "\n", ops
 
 
 def _last_uses(subs, reduced) -> dict[int, list[sp.Symbol]]:
@@ -342,11 +417,21 @@ def shareable_functions(k: Kernel, names: set[str]) -> dict[sp.Expr, list[sp.Exp
     return out
 
 
-def c_function(k: Kernel, shared: dict[sp.Expr, sp.Symbol],
-               found: dict[sp.Expr, list[sp.Expr]]) -> tuple[str, tuple[str, ...]]:
-    """The C source of ``k`` with the written-out applications ``shared`` maps taken as
-    arguments (placed first) instead of computed, and its argument names; ``found``: the
-    kernel's :func:`shareable_functions`."""
+def shared_functions(found: Sequence[dict[sp.Expr, list[sp.Expr]]]) -> list[sp.Expr]:
+    """tan, sin and cos of the pose that two or more kernels compute (``found``: each
+    kernel's :func:`shareable_functions`; the Study map, the Jacobian and the limits all
+    take tan(angle/2) of the pose's angles), in a deterministic order."""
+    count: dict[sp.Expr, int] = {}
+    for applications in found:
+        for full in applications:
+            count[full] = count.get(full, 0) + 1
+    return sorted((f for f, c in count.items() if c > 1), key=sp.srepr)
+
+
+def _with_shared(k: Kernel, shared: dict[sp.Expr, sp.Symbol],
+                 found: dict[sp.Expr, list[sp.Expr]]):
+    """The program of ``k`` with the applications ``shared`` maps read from its symbols,
+    and the symbols it then takes: ``(extra arguments, temporaries, outputs)``."""
     args, subs, reduced = k.program
     rep, extra = {}, []
     for full, sym in shared.items():
@@ -355,11 +440,35 @@ def c_function(k: Kernel, shared: dict[sp.Expr, sp.Symbol],
             for form in found[full]:
                 rep[form] = sym
     if not rep:
+        return [], list(subs), list(reduced)
+    return (extra, [(s, sp.sympify(e).xreplace(rep)) for s, e in subs],
+            [sp.sympify(e).xreplace(rep) for e in reduced])
+
+
+def numpy_function(k: Kernel, name: str, shared: dict[sp.Expr, sp.Symbol],
+                   found: dict[sp.Expr, list[sp.Expr]]) -> Kernel:
+    """``k`` as a numpy function ``name`` taking every value of ``shared`` (in its order)
+    before its own arguments, those it computed itself read from them instead (``found``:
+    the kernel's :func:`shareable_functions`)."""
+    args, _, _ = k.program
+    _, subs, reduced = _with_shared(k, shared, found)
+    new_args = [*shared.values(), *args]
+    source, ops = _numpy_function(name, new_args, subs, reduced, k.doc, k.scalars)
+    return Kernel(name, source, ops, "", tuple(str(a) for a in new_args), k.outputs, (),
+                  k.doc, k.scalars)
+
+
+def c_function(k: Kernel, shared: dict[sp.Expr, sp.Symbol],
+               found: dict[sp.Expr, list[sp.Expr]]) -> tuple[str, tuple[str, ...]]:
+    """The C source of ``k`` with the written-out applications ``shared`` maps taken as
+    arguments (placed first) instead of computed, and its argument names; ``found``: the
+    kernel's :func:`shareable_functions`."""
+    args = k.program[0]
+    extra, subs, reduced = _with_shared(k, shared, found)
+    if not extra:
         return k.c_source, k.arguments
-    subs = [(s, sp.sympify(e).xreplace(rep)) for s, e in subs]
-    reduced = [sp.sympify(e).xreplace(rep) for e in reduced]
     new_args = [*extra, *args]
-    return (_c_function(k.name, new_args, subs, reduced, k.doc),
+    return (_c_function(k.name, new_args, subs, reduced, k.doc, k.scalars),
             tuple(str(a) for a in new_args))
 
 
@@ -368,8 +477,8 @@ def c_values(name: str, args: Sequence[sp.Symbol], values: Sequence[sp.Expr], do
     return _c_function(name, args, [], list(values), doc)
 
 
-def _c_function(name, args, subs, reduced, doc) -> str:
-    cp = _CPrinter()
+def _c_function(name, args, subs, reduced, doc, scalars: frozenset = frozenset()) -> str:
+    cp = _CPrinter(scalars=scalars)
     params = ", ".join([f"double v_{a}" for a in args] + ["double *restrict out"])
     lines = [f"/* {doc.replace('*/', '* /')} */", f"BF_INLINE void {name}({params})", "{"]
     for sym, expr in subs:

@@ -18,7 +18,14 @@ from ..kinematics.ik_plan import IKStep
 from ..kinematics.rps_forward import DEGREE_BOUND, RPSSystem
 from ..solvers.closures import RPSEliminant
 from .c_module import c_module
-from .kernels import Kernel, kernel, leaner_outputs
+from .kernels import (
+    Kernel,
+    kernel,
+    leaner_outputs,
+    numpy_function,
+    shareable_functions,
+    shared_functions,
+)
 from .template import render
 
 
@@ -364,7 +371,9 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
             [h.translation - h.pitch * 2 * sp.atan(h.rotation) for h in helical],
             "Residuals s - pitch * theta of the helical joints (zero where the algebra's "
             "cylindrical joint is the helical one)."))
-    total = sum(k.operations for k in kernels)
+    by_name = {k.name: k for k in kernels}  # as the C module takes them
+    kernels, pose_kernels = _pose_sharing(kernels, spec.pose, par)
+    total = sum(k.operations for k in kernels if k.name not in pose_kernels)  # no wrappers
     rps_kernels = ("_runtime.RPSKernels(coefficients=_rps_coefficients, "
                    "equations=_rps_equations, centres=_rps_centres, platform=_rps_platform, "
                    "study=_rps_study)") if spec.rps else "None"
@@ -390,7 +399,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         "declaration": f"bonered_alg/mechanisms/{spec.name}.py", "source": spec.source,
         "derivation_hash": spec.derivation_hash, "total_operations": total,
         "contract": ", ".join(names), "api_version": runtime.API_VERSION, "name": spec.name,
-        "operations": [(k.name, k.operations) for k in kernels],
+        "operations": [(k.name, k.operations) for k in kernels
+                       if k.name not in pose_kernels],
         "parameters": [{"name": p.name, "value": p.value, "unit": p.unit, "domain": p.domain,
                         "note": p.description + "; " + p.source} for p in spec.parameters],
         "pose": [str(s) for s in spec.pose], "pose_units": list(spec.pose_units),
@@ -419,7 +429,11 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         "physical_branch": tuple((str(j), float(v)) for j, v in spec.physical_branch),
         "solve_index": tuple(list(spec.joints).index(st.joint) for st in spec.steps),
         "pivots_kernel": "_pivots" if linear else "None",
-        "limit_kernel": "_limit_values" if spec.limits else "None",
+        "limit_kernel": pose_kernels.get("_limit_values", "_limit_values") if spec.limits
+        else "None",
+        "study_kernel": pose_kernels.get("_study", "_study"),
+        "jac_kernel": pose_kernels.get("_jac", "_jac"),
+        "shared_kernel": "_shared" if pose_kernels else "None",
         "rps_kernels": rps_kernels,
         "fk_index": tuple(list(spec.fk_unknowns).index(st.joint) for st in spec.fk_steps),
         "fk_charts": fk_charts,
@@ -434,11 +448,14 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         "helical_kernel": "_helical" if helical else "None",
         "statics": statics,
     }
-    by_name = {k.name: k for k in kernels}
-    ik_ops = sum(k.operations for k in [by_name["_study"], *step_kernels]
-                 + [by_name[n] for n in ("_pivots", "_limit_values") if n in by_name])
-    context["function_operations"] = [("ik", ik_ops),
-                                      ("ik_and_jacobian", ik_ops + by_name["_jac"].operations)]
+    numpy_ops = {k.name: k.operations for k in kernels}
+
+    def ops(name: str) -> int:  # of the numpy kernel the runtime calls
+        return numpy_ops[pose_kernels.get(name, name)]
+    ik_ops = (sum(ops(n) for n in ["_study", *[k.name for k in step_kernels]]
+                  + [n for n in ("_pivots", "_limit_values") if n in by_name])
+              + numpy_ops.get("_shared", 0))
+    context["function_operations"] = [("ik", ik_ops), ("ik_and_jacobian", ik_ops + ops("_jac"))]
     c_source = c_module(
         name=spec.name, derivation_hash=spec.derivation_hash, generator=spec.generator,
         pose=context["pose"], study_pose=context["study_pose"], joints=context["joints"],
@@ -451,6 +468,40 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         angles=context["joint_angles"])
     return (render("module.py.j2", context), {k.name: k.operations for k in kernels},
             c_source)
+
+
+def _pose_sharing(kernels: list[Kernel], pose: Sequence[sp.Symbol], par: Sequence[sp.Symbol]
+                  ) -> tuple[list[Kernel], dict[str, str]]:
+    """``kernels`` with the elementary functions of the pose that the Study map, the
+    Jacobian and the limits each compute (tan(alpha/2), sin(beta), ...) computed once, by a
+    kernel ``_shared``, and passed to variants of those kernels (``_study_of``, ...) that
+    read them, as the C module does; each kernel under its old name is kept as a wrapper of
+    the two (for callers of one kernel).  Also ``{kernel: its variant}``, empty where
+    nothing is shared."""
+    names = {str(v) for v in [*pose, *par]}
+    pose_kernels = [k for k in kernels if k.name in ("_study", "_jac", "_limit_values")]
+    found = {k.name: shareable_functions(k, names) for k in pose_kernels}
+    shared = shared_functions(list(found.values()))
+    if not shared:
+        return kernels, {}
+    fsyms = {f: sp.Symbol(f"_f{i}") for i, f in enumerate(shared)}
+    out = [kernel("_shared", [*pose, *par], shared,
+                  "Elementary functions of the pose that several kernels take "
+                  f"({', '.join(map(str, fsyms.values()))}), computed once per call.")]
+    variants = {}
+    for k in kernels:
+        if k.name not in found:
+            out.append(k)
+            continue
+        variant = numpy_function(k, f"{k.name}_of", fsyms, found[k.name])
+        args = ", ".join(k.arguments)
+        wrapper = (f"def {k.name}({args}):\n    \"\"\"{k.doc}\"\"\"\n"
+                   f"    return {variant.name}(*_shared({', '.join(map(str, [*pose, *par]))}), "
+                   f"{args})\n")
+        out += [variant, Kernel(k.name, wrapper, k.operations, "", k.arguments, k.outputs,
+                                (), k.doc, k.scalars)]
+        variants[k.name] = variant.name
+    return out, variants
 
 
 def _bits(steps: Sequence[IKStep]) -> list:

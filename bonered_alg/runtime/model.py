@@ -107,6 +107,26 @@ class Model:
     angles: tuple[int, ...] = ()
     # the static model (runtime.statics.Statics), where the declaration gives link weights
     statics: object | None = None
+    # elementary functions of the pose (tan(alpha/2), ...) that ``study``, ``jac`` and
+    # ``limit_kernel`` take before their own arguments, computed once (the module's
+    # ``_shared``); None where those kernels take the pose alone
+    shared: Kernel | None = None
+
+    # ------------------------------------------------------------ pose kernels
+    def pose_values(self, pose, par) -> tuple:
+        """The values of ``shared`` for poses (..., len(POSE)); () without it."""
+        return () if self.shared is None else tuple(self.shared(*columns(pose), *par))
+
+    def study_values(self, pose, par, shared=None):
+        """The Study map's outputs (one per STUDY_POSE coordinate) of poses (...,
+        len(POSE)); ``shared``: their :meth:`pose_values` where already computed."""
+        shared = self.pose_values(pose, par) if shared is None else shared
+        return self.study(*shared, *columns(pose), *par)
+
+    def limit_kernel_values(self, pose, q, par, shared=None):
+        """The limit kernel's outputs (one per LIMITS row) at poses and joints."""
+        shared = self.pose_values(pose, par) if shared is None else shared
+        return self.limit_kernel(*shared, *columns(pose), *columns(q), *par)
 
     # ------------------------------------------------------------ angle joints
     def public(self, q):
@@ -204,12 +224,15 @@ class Model:
             self.publish(q)  # q's columns are rows of a fresh array: contiguous, in cache
         return q, status
 
-    def _solve_by_columns(self, pose, mode, par, with_status, limits):
+    def _solve_by_columns(self, pose, mode, par, with_status, limits, shared=None):
         """``_solve`` with ``q`` a view whose columns are contiguous (the kernels take one
-        column per argument: numpy is about 1.7 times slower on strided ones)."""
+        column per argument: numpy is about 1.7 times slower on strided ones); ``shared``:
+        the poses' :meth:`pose_values` where already computed."""
         shape = pose.shape[:-1]
         with numpy.errstate(all="ignore"):
-            values = self.study(*columns(pose), *par)
+            if shared is None:
+                shared = self.pose_values(pose, par)
+            values = self.study_values(pose, par, shared)
         study = numpy.empty((len(self.study_pose),) + shape)
         for i, v in enumerate(values):
             study[i] = v
@@ -221,13 +244,13 @@ class Model:
         if self.pivots is not None:
             q, status = self._pivot_check(study, q, status, par, with_status)
         if limits and self.limits:
-            q, status = self._limit_check(pose, q, status, par, with_status)
+            q, status = self._limit_check(pose, q, status, par, with_status, shared)
         return q, status
 
-    def _limit_check(self, pose, q, status, par, with_status):
+    def _limit_check(self, pose, q, status, par, with_status, shared=None):
         shape = pose.shape[:-1]
         with numpy.errstate(all="ignore"):
-            values = self.limit_kernel(*columns(pose), *columns(q), *par)
+            values = self.limit_kernel_values(pose, q, par, shared)
         violated = {"stroke": numpy.zeros(shape, dtype=bool),
                     "passive": numpy.zeros(shape, dtype=bool)}
         for v, (_, lower, upper, kind, _, _) in zip(values, self.limits):
@@ -293,7 +316,7 @@ class Model:
         shape = pose.shape[:-1]
         n = len(self.joints)
         with numpy.errstate(all="ignore"):
-            study = stacked(self.study(*columns(pose), *par), shape)
+            study = stacked(self.study_values(pose, par), shape)
         info: dict = {}
         backsubstitute(study, self.steps, self.solve_index, n, mode, par, True, info)
         roots = info["roots"]  # every step's own root, before the all-or-nothing rule
@@ -312,7 +335,7 @@ class Model:
         lims = {}
         if limits and self.limits:
             with numpy.errstate(all="ignore"):
-                values = self.limit_kernel(*columns(pose), *columns(roots), *par)
+                values = self.limit_kernel_values(pose, roots, par)
             for v, lim in zip(values, self.limits):
                 v = numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
                 lims[lim[0]] = v
@@ -400,7 +423,7 @@ class Model:
         par = check.parameters(self, "limit_values", params or {})
         if not self.limits:
             return {}
-        values = self.limit_kernel(*columns(pose), *columns(q), *par)
+        values = self.limit_kernel_values(pose, q, par)
         return {lim[0]: numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
                 for lim, v in zip(self.limits, values)}
 
@@ -432,25 +455,31 @@ class Model:
         return self._matrices(pose, q, check.parameters(self, "output_jacobian",
                                                         params or {}))[1]
 
-    def _jac_values(self, pose, q, par, into=None, row_scale=None):
+    def _jac_values(self, pose, q, par, into=None, row_scale=None, shared=None):
         """The Jacobian kernel's outputs (pivots, row scales, dq/dX row-major), one row
         each: (outputs, ...) for poses (..., len(POSE)), evaluated JAC_CHUNK poses at a
         time (its temporaries then stay in cache).  With ``into`` (n, len(JOINTS) *
         len(POSE)), the rows of dq/dX go there directly and only the pivots and row
         scales are returned; ``row_scale`` ({row of dq/dX: array (n,)}) multiplies a row's
-        entries on the way (the angle joints' dq/dt, :meth:`publish`)."""
+        entries on the way (the angle joints' dq/dt, :meth:`publish`); ``shared``: the
+        poses' :meth:`pose_values` where already computed."""
         shape = pose.shape[:-1]
         n = int(numpy.prod(shape, dtype=numpy.int64))
         flat_pose = pose.reshape(n, pose.shape[-1])
         flat_q = q.reshape(n, q.shape[-1])
-        flat_par = [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
-                    for v in par]
+
+        def flat(values):
+            return [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
+                    for v in values]
+        flat_par = flat(par)
         out = None
         nps = 2 * len(self.joints)
         with numpy.errstate(all="ignore"):
+            flat_shared = flat(self.pose_values(pose, par) if shared is None else shared)
             for lo in range(0, n, JAC_CHUNK):
                 hi = min(n, lo + JAC_CHUNK)
-                values = self.jac(*contiguous_columns(flat_pose[lo:hi]),
+                values = self.jac(*[v if numpy.ndim(v) == 0 else v[lo:hi] for v in flat_shared],
+                                  *contiguous_columns(flat_pose[lo:hi]),
                                   *columns(flat_q[lo:hi]),
                                   *[v if numpy.ndim(v) == 0 else v[lo:hi] for v in flat_par])
                 if out is None:
@@ -510,14 +539,16 @@ class Model:
         len(JOINTS)), ``J_out`` (k, len(JOINTS), len(POSE), C-contiguous rows) and
         ``status_out`` (k,); the kernel's rows of dq/dX are written into ``J_out``
         directly."""
-        q, status = self._solve_by_columns(pose, mode, par, True, limits)
+        with numpy.errstate(all="ignore"):
+            shared = self.pose_values(pose, par)
+        q, status = self._solve_by_columns(pose, mode, par, True, limits, shared)
         k = pose.shape[0]
         n, m = len(self.joints), len(self.pose)
         # the angle joints' rows of dq/dX times dq/dt as they are written (the numbers of
         # _public_jacobian, without a pass over strided rows)
         scale = {i: self.dq_dt(q[..., i]) for i in self.angles} if public else None
         values = self._jac_values(pose, q, par, into=J_out.reshape(k, n * m),
-                                  row_scale=scale)
+                                  row_scale=scale, shared=shared)
         singular = self.pivot_singular(values[:n], values[n:2 * n], (k,))
         singular |= status == ON_BOUNDARY
         J_out[singular] = numpy.nan
@@ -533,7 +564,7 @@ class Model:
         q = self.algebraic(check.joints(self, "singularities", q, shape))
         par = check.parameters(self, "singularities", params or {})
         with numpy.errstate(all="ignore"):
-            study = self.study(*columns(pose), *par)
+            study = self.study_values(pose, par)
             qc = columns(q)
             out = {name: numpy.broadcast_to(numpy.asarray(kern(*study, *qc, *par)[0],
                                                           dtype=float), shape)
@@ -555,7 +586,7 @@ class Model:
         shape = pose.shape[:-1]
         with numpy.errstate(all="ignore"):
             study = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
-                     for v in self.study(*columns(pose), *par)]
+                     for v in self.study_values(pose, par)]
             out = numpy.full(shape + (len(self.passive_names),), numpy.nan)
             for leg in self.passive:
                 solved = []
@@ -586,7 +617,7 @@ class Model:
         q, passive = self._passive(pose, mode, par)
         shape = pose.shape[:-1]
         with numpy.errstate(all="ignore"):
-            out = self.link_points(self.study(*columns(pose), *par), q, passive, par, shape)
+            out = self.link_points(self.study_values(pose, par), q, passive, par, shape)
             out /= numpy.linalg.norm(out[..., :4], axis=-1, keepdims=True)
         return out
 

@@ -103,7 +103,7 @@ def _configuration(model, pose, q, passive, par):
     effector's Study point (..., 8)."""
     st: Statics = model.statics
     shape = pose.shape[:-1]
-    study = model.study(*columns(pose), *par)
+    study = model.study_values(pose, par)
     links = model.link_points(study, q, passive, par, shape)
     legs = []
     for kern, first, count, nvars, owner in st.rates:
