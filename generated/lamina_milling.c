@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 49362ebc78fc8a19d7ab964c1f09990424e24eab611f28dae9d250929fccea2f
+ * Derivation hash: 5a81f2f4c35b4ba0b1236f87079d9f5e37fd7c5da91cc1c3cce21a60a44661de
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "49362ebc78fc8a19d7ab964c1f09990424e24eab611f28dae9d250929fccea2f";
+const char bonered_derivation_hash[] = "5a81f2f4c35b4ba0b1236f87079d9f5e37fd7c5da91cc1c3cce21a60a44661de";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f5271f0344810f6259bf069d1f8318bbe262ea189fcc2416ac4f9b8b7840e093
+ * Derivation hash: b34be345707e83d564b9dc474f39666989363f8a736aeed5faef32361725e0b2
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "f5271f0344810f6259bf069d1f8318bbe262ea189fcc2416ac4f9b8b7840e093";
+const char bonered_derivation_hash[] = "b34be345707e83d564b9dc474f39666989363f8a736aeed5faef32361725e0b2";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e3df99574e0883df1efdbffa4207f5a9d8566b0cb6c3a1dbf64cb6f24ac6901d
+ * Derivation hash: 736755c6684cd2f5041a06db19ade5691f2235360033e9b416bf5c93f9b60686
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "e3df99574e0883df1efdbffa4207f5a9d8566b0cb6c3a1dbf64cb6f24ac6901d";
+const char bonered_derivation_hash[] = "736755c6684cd2f5041a06db19ade5691f2235360033e9b416bf5c93f9b60686";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 787f1a22b145e2374dc09fd074f378358faa2e22da154d055c131e2443916010
+ * Derivation hash: fec73c4ae4e972fe73d9bc5282baa96e1522d3ee0a45a058a88530ace73e7b88
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "787f1a22b145e2374dc09fd074f378358faa2e22da154d055c131e2443916010";
+const char bonered_derivation_hash[] = "fec73c4ae4e972fe73d9bc5282baa96e1522d3ee0a45a058a88530ace73e7b88";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 05b60fed9aedfc188f8885bb03b8180fb7f7aae91b58db044cac253e862a8ec4
+ * Derivation hash: ba897c157b2e9131652d7891845d9878a486b8370c3246f95ab024011b916952
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "05b60fed9aedfc188f8885bb03b8180fb7f7aae91b58db044cac253e862a8ec4";
+const char bonered_derivation_hash[] = "ba897c157b2e9131652d7891845d9878a486b8370c3246f95ab024011b916952";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ef3bf0c862e3558668eb7650d9929907c062e52784c8fbb698425befbdcb82eb
+ * Derivation hash: e7d8eea44b30660334b19f99838a2c7f1321fe9ea33b9729da7271d33650efba
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "ef3bf0c862e3558668eb7650d9929907c062e52784c8fbb698425befbdcb82eb";
+const char bonered_derivation_hash[] = "e7d8eea44b30660334b19f99838a2c7f1321fe9ea33b9729da7271d33650efba";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -25,6 +25,23 @@ def test_integer_powers_keep_their_precedence():
     assert np.allclose(got, ref, rtol=1e-15, atol=0)
 
 
+class _Counted(np.ndarray):
+    """An array that counts the numpy ufunc calls with it as an operand."""
+
+    calls = 0
+
+    def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
+        _Counted.calls += 1
+        inputs = [np.asarray(v) if isinstance(v, _Counted) else v for v in inputs]
+        return getattr(ufunc, method)(*inputs, **kwargs).view(_Counted)
+
+
+def _array_calls(f, *args):
+    _Counted.calls = 0
+    f(*[a.view(_Counted) if isinstance(a, np.ndarray) else a for a in args])
+    return _Counted.calls
+
+
 def test_sums_are_grouped_by_their_array_factors():
     """kernels.scalar_coefficients: terms that differ only in scalar (parameter) factors
     share one array multiplication; the value is unchanged and Abs stays unevaluated."""
@@ -51,37 +68,8 @@ def test_sums_are_grouped_by_their_array_factors():
     # array operations are fewer: counted as numpy ufunc calls on array operands
     assert "_s0 = " in grouped.source
 
-    class Counted(np.ndarray):
-        calls = 0
-
-        def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
-            Counted.calls += 1
-            inputs = [np.asarray(v) if isinstance(v, Counted) else v for v in inputs]
-            return getattr(ufunc, method)(*inputs, **kwargs).view(Counted)
-
-    counts = []
-    for f in (f_plain["_p"], f_grouped["_g"]):
-        Counted.calls = 0
-        f(xs.view(Counted), ys.view(Counted), 2.5, 0.25)
-        counts.append(Counted.calls)
+    counts = [_array_calls(f, xs, ys, 2.5, 0.25) for f in (f_plain["_p"], f_grouped["_g"])]
     assert counts[1] < counts[0], counts
-
-
-class _Counted(np.ndarray):
-    """An array that counts the numpy ufunc calls with it as an operand."""
-
-    calls = 0
-
-    def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
-        _Counted.calls += 1
-        inputs = [np.asarray(v) if isinstance(v, _Counted) else v for v in inputs]
-        return getattr(ufunc, method)(*inputs, **kwargs).view(_Counted)
-
-
-def _array_calls(f, *args):
-    _Counted.calls = 0
-    f(*[a.view(_Counted) if isinstance(a, np.ndarray) else a for a in args])
-    return _Counted.calls
 
 
 def test_scalar_factors_are_multiplied_first():

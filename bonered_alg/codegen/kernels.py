@@ -80,17 +80,22 @@ def _print_mul_scalars_first(printer, expr, scalars: frozenset) -> str | None:
     return sign + "*".join(a_str) + "/(" + "*".join(b_str) + ")"
 
 
-class _Printer(NumPyPrinter):
-    """NumPyPrinter writing ``numpy.<fn>`` calls and exact rationals as float literals;
-    ``scalars`` (symbol names) are written first in a product."""
+class _ScalarsFirst:
+    """Printer mixin: ``scalars`` (symbol names) written first in a product
+    (:func:`_print_mul_scalars_first`)."""
 
     def __init__(self, settings=None, scalars: frozenset = frozenset()):
         super().__init__(settings or {})
         self.scalars = scalars
 
-    def _print_Mul(self, expr):  # noqa: N802
+    def _print_Mul(self, expr):  # noqa: N802 - sympy printer protocol
         out = _print_mul_scalars_first(self, expr, self.scalars) if self.scalars else None
         return super()._print_Mul(expr) if out is None else out
+
+
+class _Printer(_ScalarsFirst, NumPyPrinter):
+    """NumPyPrinter writing ``numpy.<fn>`` calls and exact rationals as float literals;
+    ``scalars`` (symbol names) are written first in a product."""
 
     def _print_Rational(self, expr):  # noqa: N802 - sympy printer protocol
         return repr(float(expr.p) / float(expr.q)) if expr.q != 1 else f"{expr.p}.0"
@@ -132,19 +137,11 @@ def _small_power(printer, expr) -> str | None:
     return None
 
 
-class _CPrinter(C99CodePrinter):
+class _CPrinter(_ScalarsFirst, C99CodePrinter):
     """C99 for the fast path: the same literals and integer powers as :class:`_Printer`;
     every variable prefixed ``v_`` (no clash with ``gamma``, ``y1`` or ``j0`` of libm);
     ``scalars`` first in a product, as there (the compiler then hoists ``2.0*v_rb`` out of
     the loop over poses)."""
-
-    def __init__(self, settings=None, scalars: frozenset = frozenset()):
-        super().__init__(settings or {})
-        self.scalars = scalars
-
-    def _print_Mul(self, expr):  # noqa: N802
-        out = _print_mul_scalars_first(self, expr, self.scalars) if self.scalars else None
-        return super()._print_Mul(expr) if out is None else out
 
     def _print_Symbol(self, expr):  # noqa: N802
         return f"v_{expr.name}"
