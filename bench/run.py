@@ -686,7 +686,7 @@ def main():
     ap.add_argument("--poses", type=int, default=1_000_000)
     ap.add_argument("--sympy-budget", type=float, default=60.0)
     ap.add_argument("--only", choices=["workspace", "pro_hep_lct_tool", "hand_written",
-                                       "membership"],
+                                       "membership", "derive"],
                     default=None,
                     help="re-run one section and merge it into the existing --out file")
     args = ap.parse_args()
@@ -695,7 +695,8 @@ def main():
         results[args.only] = {"workspace": workspace_benchmarks,
                               "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks,
                               "hand_written": hand_written_benchmarks,
-                              "membership": membership_benchmarks}[args.only]()
+                              "membership": membership_benchmarks,
+                              "derive": derive_benchmarks}[args.only]()
         args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
         print(f"wrote {args.out} ({args.only} section)")
         return

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5a81f2f4c35b4ba0b1236f87079d9f5e37fd7c5da91cc1c3cce21a60a44661de
+ * Derivation hash: 8b77c05b201c3c32a3119832aa249b354039ab93dbf09ef8507e58338f5df31e
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "5a81f2f4c35b4ba0b1236f87079d9f5e37fd7c5da91cc1c3cce21a60a44661de";
+const char bonered_derivation_hash[] = "8b77c05b201c3c32a3119832aa249b354039ab93dbf09ef8507e58338f5df31e";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b34be345707e83d564b9dc474f39666989363f8a736aeed5faef32361725e0b2
+ * Derivation hash: 4d65a9b3d5cc81ecb6b77fdee852598ce141b1fc4f6d8e265d2d4068da38ce6f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "b34be345707e83d564b9dc474f39666989363f8a736aeed5faef32361725e0b2";
+const char bonered_derivation_hash[] = "4d65a9b3d5cc81ecb6b77fdee852598ce141b1fc4f6d8e265d2d4068da38ce6f";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

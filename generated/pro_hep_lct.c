@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 736755c6684cd2f5041a06db19ade5691f2235360033e9b416bf5c93f9b60686
+ * Derivation hash: d0f6d55abc36debc3e4867b8d17ffb8370cdb56c6d3c34f9f6a87a3b77ee6f54
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "736755c6684cd2f5041a06db19ade5691f2235360033e9b416bf5c93f9b60686";
+const char bonered_derivation_hash[] = "d0f6d55abc36debc3e4867b8d17ffb8370cdb56c6d3c34f9f6a87a3b77ee6f54";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

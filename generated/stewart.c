@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fec73c4ae4e972fe73d9bc5282baa96e1522d3ee0a45a058a88530ace73e7b88
+ * Derivation hash: d4be0dcd91dd31d0d6f9f9be016af77784ed2c5dd93c0360f5a2a0b8162a4807
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "fec73c4ae4e972fe73d9bc5282baa96e1522d3ee0a45a058a88530ace73e7b88";
+const char bonered_derivation_hash[] = "d4be0dcd91dd31d0d6f9f9be016af77784ed2c5dd93c0360f5a2a0b8162a4807";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ba897c157b2e9131652d7891845d9878a486b8370c3246f95ab024011b916952
+ * Derivation hash: 26411ccc596719eb71b821385ed5ff76e1d976c057b9ce811f8719e6fd72e53c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "ba897c157b2e9131652d7891845d9878a486b8370c3246f95ab024011b916952";
+const char bonered_derivation_hash[] = "26411ccc596719eb71b821385ed5ff76e1d976c057b9ce811f8719e6fd72e53c";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

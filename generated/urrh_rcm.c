@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e7d8eea44b30660334b19f99838a2c7f1321fe9ea33b9729da7271d33650efba
+ * Derivation hash: 29cafb9e158c2e59a46e8bf1d377ee4768fe45ea12a1b94e99dbd5d0b37639b9
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "e7d8eea44b30660334b19f99838a2c7f1321fe9ea33b9729da7271d33650efba";
+const char bonered_derivation_hash[] = "29cafb9e158c2e59a46e8bf1d377ee4768fe45ea12a1b94e99dbd5d0b37639b9";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -19,7 +19,8 @@ from ..algebra import study_symbolic as ss
 from ..declaration.closures import MU, Closure
 from .problem import EliminationProblem
 
-__all__ = ["MU", "closure_equations", "leg_problem", "moved_symbols", "moved_platform"]
+__all__ = ["MU", "closure_equations", "leg_problem", "leg_variables", "moved_symbols",
+           "moved_platform"]
 
 
 def closure_equations(chain, platform, chart) -> list[sp.Expr]:
@@ -39,29 +40,39 @@ def moved_platform(closure: Closure, leg) -> dict[sp.Symbol, sp.Expr]:
     return dict(zip(moved_symbols(closure), moved))
 
 
-def leg_problem(mech, closure: Closure, leg) -> EliminationProblem:
-    """The problem eliminating ``leg``'s passive variables (and the chart's scale)."""
-    chart = closure.normalization
+def _leg_frame(closure: Closure, leg):
+    """``(chain, platform, pose, symbols)`` of the leg in its own frame (the mount's, if
+    any); ``chain`` is computed only when called."""
     if leg.mount is None:
-        chain, platform, pose = leg.product(), tuple(closure.platform), tuple(closure.pose)
-        syms = leg.free_symbols
-    else:
-        chain, pose = leg.local_product(), moved_symbols(closure)
-        platform = pose
-        syms = set().union(*(f.free_symbols for f in leg.factors))
-    eqs = closure_equations(chain, platform, chart)
+        return leg.product, tuple(closure.platform), tuple(closure.pose), leg.free_symbols
+    syms = set().union(*(f.free_symbols for f in leg.factors))
+    pose = moved_symbols(closure)
+    return leg.local_product, pose, pose, syms
+
+
+def leg_variables(mech, closure: Closure, leg) -> EliminationProblem:
+    """``leg_problem`` without its equations: the variables it eliminates and keeps, and
+    its context, for a caller that writes the leg's ideal another way."""
+    _, _, pose, syms = _leg_frame(closure, leg)
     couplings = [c.equation for c in closure.couplings if c.equation.free_symbols & syms]
-    eqs += [sp.expand(c) for c in couplings]
     syms = syms.union(*(c.free_symbols for c in couplings))
     passive = tuple(s for s in mech.passive if s in syms)
     active = tuple(s for s in mech.active if s in syms)
     geometric = tuple(s for s in mech.geometric if s in syms)
     constants = tuple(c for c in mech.constants if c.symbol in syms)
-    eqs += [sp.expand(c.minimal_polynomial) for c in constants]
     frame = "" if leg.mount is None else " (in the frame of its mount)"
     return EliminationProblem(
         context=f"mechanism {mech.name!r}, closure {closure.name!r}, leg {leg.name!r}{frame}",
-        equations=tuple(eqs),
-        eliminate=passive + (chart.scale,),
+        equations=tuple(couplings) + tuple(c.minimal_polynomial for c in constants),
+        eliminate=passive + (closure.normalization.scale,),
         keep=pose + active + geometric + tuple(c.symbol for c in constants),
     )
+
+
+def leg_problem(mech, closure: Closure, leg) -> EliminationProblem:
+    """The problem eliminating ``leg``'s passive variables (and the chart's scale)."""
+    chain, platform, _, _ = _leg_frame(closure, leg)
+    shape = leg_variables(mech, closure, leg)
+    eqs = closure_equations(chain(), platform, closure.normalization)
+    eqs += [sp.expand(c) for c in shape.equations]
+    return EliminationProblem(shape.context, tuple(eqs), shape.eliminate, shape.keep)

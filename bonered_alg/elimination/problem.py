@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from ..algebra import polyring as pr
 from . import polyterms as pt
 
 
@@ -66,10 +67,9 @@ class ParametricProblem(_PolynomialProblem):
 
 
 def as_expressions(basis, gens) -> list[sp.Expr]:
-    """Term lists -> sympy expressions in ``gens``."""
-    return [sp.Add(*[sp.Rational(c.numerator, c.denominator)
-                     * sp.Mul(*[g**k for g, k in zip(gens, e)]) for e, c in terms])
-            for terms in basis]
+    """Term lists -> sympy expressions in ``gens`` (:func:`..algebra.polyring.expression`)."""
+    powers: dict = {}
+    return [pr.expression(terms, gens, powers) for terms in basis]
 
 
 def _expressions(result, gens) -> tuple[sp.Expr, ...]:

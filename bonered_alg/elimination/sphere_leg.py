@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import mpmath
 import sympy as sp
 
+from ..algebra import polyring as pr
 from ..algebra import study_symbolic as ss
 from ..chains.joints import Leg, Role
 
@@ -95,64 +96,116 @@ def moved(d: DistanceLeg, platform: tuple) -> tuple[sp.Expr, ...]:
                       ss.translation_vector(d.platform))
 
 
+def _cleared_sphere(d: DistanceLeg, platform: tuple, minimal_polynomials: dict,
+                    extra: set = frozenset()):
+    """``(S'', gens, D)``: the sphere condition in the ring Q[platform coordinates and
+    stroke (``gens``), geometry, algebraic constants, ``extra`` symbols] with the layout's
+    denominators cleared: with ``D`` the lcm of the denominators of ``A`` and ``B``,
+    ``2D T(-A) X 2D T(B) = 4 D^2 M`` is polynomial and gives ``S'' = 16 D^4 S``."""
+    gens = tuple(sorted(set().union(*(sp.sympify(c).free_symbols for c in platform))
+                        | {d.stroke}, key=str))
+    layout = [sp.sympify(c) for c in (*d.base, *d.platform)]
+    geometry = set().union(*(c.free_symbols for c in layout)) | set(minimal_polynomials)
+    ring = pr.ring_over((*gens, *sorted((geometry | set(extra)) - set(gens), key=str)))
+    fractions = [pr.fraction(ring, c) for c in layout]
+    dens = [den for _, den in fractions]
+    if any(set(minimal_polynomials) & {ring.symbols[i] for m in den.monoms()
+                                       for i, e in enumerate(m) if e} for den in dens):
+        raise ValueError(f"leg {d.leg}: a denominator of the layout holds an algebraic "
+                         "constant; the sphere condition is written over Q(parameters)")
+    common = pr.lcm(dens)
+    scaled = [num * common.exquo(den) for num, den in fractions]
+    two_d, zero = 2 * common, ring.zero
+    left = (two_d, zero, zero, zero, zero, *scaled[:3])  # 2D T(-A) = [2D:0:0:0:0:D A]
+    right = (two_d, zero, zero, zero, zero, *(-c for c in scaled[3:]))
+    m = pr.study_product(left, tuple(pr.polynomial(ring, c) for c in platform), right)
+    q = ring.gens[gens.index(d.stroke)]
+    expr = q**2 * sum((c**2 for c in m[:4]), zero) - 4 * sum((c**2 for c in m[4:]), zero)
+    return expr, gens, common
+
+
+def _sphere_ring(d: DistanceLeg, platform: tuple, minimal_polynomials: dict | None
+                 ) -> tuple[pr.PolyElement, tuple[sp.Symbol, ...]]:
+    """The sphere condition of :func:`_cleared_sphere` reduced by the algebraic constants'
+    minimal polynomials and made primitive in the platform's coordinates and the stroke.
+    Returns it and those coordinates."""
+    minpolys = minimal_polynomials or {}
+    expr, gens, _ = _cleared_sphere(d, platform, minpolys)
+    ring = expr.ring
+    expr = pr.reduce_modulo(expr, [pr.polynomial(ring, mp) for mp in minpolys.values()])
+    return pr.primitive_in(expr, gens), gens
+
+
 def sphere_condition(d: DistanceLeg, platform: tuple,
                      minimal_polynomials: dict | None = None) -> sp.Expr:
     """``q^2 |x|^2 - 4 |y'|^2`` (module docstring), expanded.  A layout rational in the
     geometric parameters gives the numerator, divided by its content in those parameters
     (a non-zero constant for a given mechanism), so the result is primitive in the
-    platform's coordinates and the stroke; algebraic constants (``minimal_polynomials``:
-    symbol -> its minimal polynomial) are reduced first."""
-    m = moved(d, platform)
-    expr = d.stroke**2 * sum(c**2 for c in m[:4]) - 4 * sum(c**2 for c in m[4:])
-    num, _ = sp.fraction(sp.together(sp.expand(expr)))
-    num = sp.expand(num)
-    for c, mp in (minimal_polynomials or {}).items():
-        if num.has(c):  # c first: dense division with c as the main variable
-            gens = (c, *sorted(num.free_symbols - {c}, key=str))
-            num = sp.Poly(num, *gens).rem(sp.Poly(mp, *gens)).as_expr()
-    if num == 0:
-        return num
-    gens = sorted(set().union(*(sp.sympify(c).free_symbols for c in platform)) | {d.stroke},
-                  key=str)
-    _, prim = sp.Poly(num, *gens).primitive()
-    return sp.expand(prim.as_expr())
+    platform's coordinates and the stroke, with integer coefficients of gcd 1 and a positive
+    leading coefficient; algebraic constants (``minimal_polynomials``: symbol -> its minimal
+    polynomial) are reduced.  Computed on typed polynomials (:func:`_sphere_ring`)."""
+    return pr.as_expr(_sphere_ring(d, platform, minimal_polynomials)[0])
 
 
-def _irreducible(expr: sp.Expr, quadratic: tuple[sp.Symbol, ...],
+def _irreducible(poly: pr.PolyElement, quadratic: tuple[sp.Symbol, ...],
                  geometry: set[sp.Symbol]) -> bool:
-    """True when ``expr``, of degree 2 in ``quadratic`` with coefficients in the other
+    """True when ``poly``, of degree 2 in ``quadratic`` with coefficients in the other
     symbols, is irreducible over the algebraic closure: a quadratic polynomial factors only
     when its homogenized form has rank <= 2 (the rank of its quadratic part, a determinant
     over the field of the other symbols, is a lower bound; it is required to be full here),
     and by Gauss's lemma only when its coefficients have a common factor; a common factor
     in the ``geometry`` symbols alone (the ring's ``(1 + t^2)`` of a rational layout) is a
     non-zero constant for a given mechanism and allowed."""
-    poly = sp.Poly(expr, *quadratic)
-    if poly.total_degree() != 2:
+    coeffs = pr.coefficients_in(poly, quadratic)
+    if max(map(sum, coeffs)) != 2:
         return False
-    if sp.expand(sp.hessian(poly.as_expr(), quadratic).det(method="berkowitz")) == 0:
+    n, zero = len(quadratic), poly.ring.zero
+    hessian = [[zero] * n for _ in range(n)]
+    for e, c in coeffs.items():
+        if sum(e) == 2:
+            i, j = [k for k in range(n) for _ in range(e[k])]
+            hessian[i][j] = hessian[j][i] = 2 * c if i == j else c
+    if not pr.determinant(hessian):
         return False  # rank of the quadratic part < 4: not certified here
-    content = sp.gcd_list([sp.expand(c) for c in poly.coeffs()])
-    return sp.sympify(content).free_symbols <= geometry
+    content = pr.gcd(list(coeffs.values()))
+    return {poly.ring.symbols[i] for m in content.monoms() for i, k in enumerate(m) if k} \
+        <= geometry
 
 
 def _rank(leg: Leg, d: DistanceLeg, passive: tuple, params: dict, seed: int,
           points: int = 3) -> int:
     """Rank of d(chart coordinates)/d(passive, q), the largest over ``points`` random
     rational points (the generic rank; a point can be special, e.g. a universal joint at
-    90 deg), from singular values at 50 digits."""
-    prod = leg.product()
+    90 deg), from singular values at 50 digits.  The Jacobian is evaluated factor by factor
+    (product rule: a variable's column is the chain product with its factor differentiated),
+    each factor's value and derivative from its exact value at the point to 60 digits."""
     variables = [*passive, d.stroke]
-    chart = [c / prod[0] for c in prod[1:]]
-    jac = sp.Matrix(chart).jacobian(variables).subs(params)
+    studies = [tuple(sp.sympify(c).xreplace(params) for c in f.study()) for f in leg.factors]
+    if leg.mount is not None:
+        studies.insert(0, tuple(sp.sympify(c).xreplace(params) for c in leg.mount))
+    derivatives = [{v: tuple(sp.diff(c, v) for c in f) for v in variables
+                    if any(c.has(v) for c in f)} for f in studies]
     rng = random.Random(seed)
     best = 0
     for _ in range(points):
         point = {v: sp.Rational(rng.randint(-1000, 1000), 1009) for v in variables}
         point[d.stroke] = sp.Rational(rng.randint(150_000, 300_000), 1009)
         with mpmath.workdps(RANK_DIGITS):
-            m = mpmath.matrix([[mpmath.mpf(sp.N(e, RANK_DIGITS + 10)) for e in row]
-                               for row in jac.subs(point).tolist()])
+            def value(e, point=point):
+                return mpmath.mpf(sp.N(e.xreplace(point), RANK_DIGITS + 10))
+
+            at = [tuple(value(c) for c in f) for f in studies]
+            chain = pr.study_product(*at)
+            rows = []
+            for v in variables:
+                column = [mpmath.mpf(0)] * 8
+                for j, dj in enumerate(derivatives):
+                    if v in dj:
+                        term = pr.study_product(*at[:j], [value(c) for c in dj[v]], *at[j + 1:])
+                        column = [a + b for a, b in zip(column, term)]
+                rows.append([(column[i] * chain[0] - chain[i] * column[0]) / chain[0] ** 2
+                             for i in range(1, 8)])
+            m = mpmath.matrix(rows).T
             sv = mpmath.svd_r(m, compute_uv=False)
             top = max(abs(x) for x in sv)
             best = max(best, sum(1 for s in sv if abs(s) > RANK_TOL * top))
@@ -196,18 +249,23 @@ def certify(leg: Leg, d: DistanceLeg, platform: tuple, passive: tuple, params: d
         raise NotADistanceLeg(f"leg {leg.name}: the chain's image has dimension {rank}, not 6")
     chain = leg.product()
     minpolys = minimal_polynomials(constants)
-    gen = sphere_condition(*_between_the_points(leg, d), minpolys)
+    try:
+        gen = sphere_condition(*_between_the_points(leg, d), minpolys)
+        xs = tuple(platform)
+        sphere, _ = _sphere_ring(d, xs, minpolys)
+    except ValueError as exc:
+        raise NotADistanceLeg(str(exc)) from None
     if gen != 0:
         raise NotADistanceLeg(f"leg {leg.name}: the sphere condition does not vanish on the "
                               "chain product")
-    if sp.expand(ss.quadric(chain)) != 0:  # pragma: no cover - holds for every chain
+    if ss.quadric(chain) != 0:  # pragma: no cover - holds for every chain
         raise NotADistanceLeg(f"leg {leg.name}: the chain product is off the Study quadric")
-    xs = tuple(platform)
     y0 = xs[4]
     solved = sp.solve(ss.quadric(xs), y0)
     if len(solved) != 1 or xs[0] != 1:
         raise NotADistanceLeg(f"leg {leg.name}: the platform point is not in the chart x0 = 1")
-    reduced = sp.expand(sphere_condition(d, xs, minpolys).subs(y0, solved[0]))
+    ring = sphere.ring
+    reduced = sphere.compose(ring.gens[ring.symbols.index(y0)], pr.polynomial(ring, solved[0]))
     geometry = set(params) | set(constants)
     if not _irreducible(reduced, (*xs[5:], d.stroke), geometry):
         raise NotADistanceLeg(f"leg {leg.name}: the sphere condition factors on the quadric")
@@ -243,31 +301,37 @@ def compact_sphere(d: DistanceLeg, platform: tuple, generator: sp.Expr,
                    constants: dict | None = None) -> CompactSphere | None:
     """The leg's generator (as the ideal holds it: expanded, primitive, perhaps negated) as
     a constant multiple of the unexpanded sphere condition, or None where it is not one.
-    Proved, not assumed: with ``scale = n / m`` read off one coefficient, the numerator of
-    ``m generator - n (q^2 R - 4 D)`` must expand to zero.  ``constants`` (symbol ->
-    exact value) are substituted in both first."""
+    Proved, not assumed, on typed polynomials with the constants as symbols: with ``S'' =
+    16 D^4 S`` (:func:`_cleared_sphere`) and ``c_g``, ``c_s`` the coefficients (in the
+    geometry) of the generator's lex-leading monomial in the platform's coordinates and the
+    stroke in the generator and in ``S''``, ``c_s generator - c_g S''`` must vanish modulo
+    the constants' minimal polynomials (irreducible over Q(parameters), so exactly where it
+    vanishes at the constants' values).  Then ``generator = scale S`` with ``scale = 16 D^4
+    c_g / c_s``; ``constants`` (symbol -> exact value) are substituted in what is returned."""
     sub = constants or {}
+    minpolys = minimal_polynomials(sub)
+    generator = sp.sympify(generator)
+    try:
+        cleared, gens, common = _cleared_sphere(d, platform, minpolys, generator.free_symbols)
+        target = pr.polynomial(cleared.ring, generator)
+    except ValueError:
+        return None
+    if not cleared or not target:
+        return None
+    lead = max(pr.coefficients_in(target, gens))
+    c_g = pr.coefficients_in(target, gens)[lead]
+    c_s = pr.coefficients_in(cleared, gens).get(lead)
+    if not c_s:
+        return None
+    ring = cleared.ring
+    reduce = [pr.polynomial(ring, mp) for mp in minpolys.values()]
+    if pr.reduce_modulo(c_s * target - c_g * cleared, reduce):
+        return None
+    value = (lambda p: pr.as_expr(p).subs(sub)) if sub else pr.as_expr
+    other = value(c_s) / (16 * value(common) ** 4)
+    scale = sp.cancel(value(c_g) / other)
     m = [sp.sympify(c).subs(sub) for c in moved(d, platform)]
     rot, dual = sum(c**2 for c in m[:4]), sum(c**2 for c in m[4:])
-    expanded = sp.expand(d.stroke**2 * rot - 4 * dual)
-    target = sp.expand(sp.sympify(generator).subs(sub))
-    if expanded == 0 or target == 0:
-        return None
-    gens = sorted(set().union(*(sp.sympify(c).free_symbols for c in platform)) | {d.stroke},
-                  key=str)
-    pt, pc = sp.Poly(target, *gens), sp.Poly(expanded, *gens)
-    monom, coeff = pt.terms()[0]
-    other = pc.coeff_monomial(monom)
-    if other == 0:
-        return None
-    scale = sp.cancel(sp.sympify(coeff) / sp.sympify(other))
-    if scale.free_symbols & set(gens):
-        return None
-    num, den = sp.fraction(scale)
-    # the layout's coordinates may be rational in the parameters (tan-half-angle rings):
-    # the difference is a rational function whose numerator must vanish
-    if sp.expand(sp.numer(sp.together(den * target - num * expanded))) != 0:
-        return None
     return CompactSphere(d.stroke, scale, rot, dual,
                          tuple(sp.sympify(c).subs(sub) for c in d.base),
                          tuple(sp.sympify(c).subs(sub) for c in d.platform),

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from ..algebra import polyring as pr
+
 
 @dataclass(frozen=True)
 class FactoredPolynomial:
@@ -52,13 +54,14 @@ def large_product(factors: list[sp.Expr]) -> bool:
 
 def factored(name: str, expr: sp.Expr, meaning: str = "",
              evaluate: sp.Expr | None = None) -> FactoredPolynomial:
-    """Factor ``expr`` over the rationals; factors sorted for determinism.  An unevaluated
+    """Factor ``expr`` over the rationals (FLINT, :func:`..algebra.polyring.factor_list`);
+    factors sorted for determinism.  An unevaluated
     product (``sp.Mul(..., evaluate=False)``, see :func:`large_product`) is factored factor
     by factor and kept unexpanded."""
     if isinstance(expr, sp.Mul) and large_product(list(expr.args)):
         c, merged = sp.Integer(1), {}
         for arg in expr.args:
-            ca, fa = sp.factor_list(sp.expand(arg))
+            ca, fa = pr.factor_list(sp.expand(arg))
             c *= ca
             for f, k in fa:
                 f = sp.expand(f)
@@ -66,7 +69,7 @@ def factored(name: str, expr: sp.Expr, meaning: str = "",
         fl = list(merged.items())
     else:
         expr = sp.expand(expr)
-        c, fl = sp.factor_list(expr)
+        c, fl = pr.factor_list(expr)
     fl = sorted(((sp.expand(f), int(k)) for f, k in fl), key=lambda t: (sp.count_ops(t[0]),
                                                                       sp.srepr(t[0])))
     return FactoredPolynomial(name, expr, c, tuple(fl), meaning, evaluate)
@@ -80,4 +83,4 @@ def discriminant(g: sp.Expr, q: sp.Symbol) -> sp.Expr:
         a, c = poly.coeff_monomial(q**2), poly.coeff_monomial(1)
         if large_product([a, c]):
             return sp.Mul(-4, a, c, evaluate=False)
-    return sp.expand(sp.discriminant(sp.expand(g), q))
+    return pr.discriminant(sp.expand(g), q)

@@ -14,7 +14,7 @@ import sympy as sp
 from ..algebra.study_symbolic import quadric
 from ..declaration.closures import UnitCoordinate
 from ..elimination import sphere_leg
-from ..elimination.closure import leg_problem, moved_platform
+from ..elimination.closure import leg_problem, leg_variables, moved_platform
 from ..elimination.problem import EliminationProblem
 from ..errors import NonClosingMechanismError
 from ..pipeline.results import LegIdeal
@@ -32,7 +32,7 @@ class DistanceLeg:
         chart = closure.normalization
         if not (isinstance(chart, UnitCoordinate) and chart.index == 0):
             return None  # the certificate is written in the chart x0 = 1
-        full = leg_problem(mech, closure, leg)
+        full = leg_variables(mech, closure, leg)
         passive = tuple(s for s in full.eliminate if s != closure.normalization.scale)
         params = {p.symbol: sp.nsimplify(p.value) for p in mech.parameters}
         consts = {c.symbol: c.value for c in mech.constants}

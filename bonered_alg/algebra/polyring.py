@@ -1,0 +1,255 @@
+"""Exact polynomial arithmetic on sympy's typed sparse polynomials (:mod:`sympy.polys.rings`).
+
+Expanding products of Study tuples as sympy expressions (``sp.expand`` on ``Add``/``Mul``
+trees) costs seconds per leg; the same arithmetic on ``PolyElement`` (dicts of exponent
+tuples to gmpy2 rationals) costs milliseconds.  The functions here convert in and out and
+compute the normal forms the symbolic stages need; the results are exact and independent of
+how they were computed.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from fractions import Fraction
+from functools import reduce
+
+import sympy as sp
+from sympy.core.basic import _args_sortkey
+from sympy.polys.polyutils import _sort_gens
+from sympy.polys.rings import PolyElement, PolyRing
+
+from . import convention as cv
+
+
+def ring_over(symbols: Iterable[sp.Symbol]) -> PolyRing:
+    """The ring Q[symbols], its variables in the given order (lex order on them)."""
+    return PolyRing(tuple(symbols), sp.QQ)
+
+
+def polynomial(ring: PolyRing, expr) -> PolyElement:
+    """A polynomial expression with rational coefficients as an element of ``ring``;
+    ValueError naming the expression when it is not one (a symbol outside the ring, a
+    denominator, a function)."""
+    try:
+        return ring.from_expr(sp.sympify(expr))
+    except (ValueError, sp.polys.polyerrors.PolynomialError, TypeError) as exc:
+        raise ValueError(f"not a polynomial in {ring.symbols}: {expr}") from exc
+
+
+def fraction(ring: PolyRing, expr) -> tuple[PolyElement, PolyElement]:
+    """``(numerator, denominator)`` of a rational expression over a common denominator."""
+    num, den = sp.fraction(sp.together(sp.sympify(expr)))
+    return polynomial(ring, num), polynomial(ring, den)
+
+
+def lcm(polys: Sequence[PolyElement]) -> PolyElement:
+    """Least common multiple (monic over Q) of non-zero polynomials."""
+    return reduce(lambda a, b: a.lcm(b), polys, polys[0].ring.one)
+
+
+def reduce_modulo(p: PolyElement, univariate: Iterable[PolyElement]) -> PolyElement:
+    """Remainder of ``p`` by univariate polynomials in distinct variables (each a Groebner
+    basis of its own ideal, so the remainder is unique): ``s3 -> `` degree < 2 for
+    ``s3^2 - 3``."""
+    for m in univariate:
+        p = p.rem(m)
+    return p
+
+
+def _normalized_sign(p: PolyElement) -> PolyElement:
+    """``p`` with integer coefficients of gcd 1 and a positive leading coefficient in the
+    ring's lexicographic order."""
+    _, p = p.clear_denoms()
+    content = p.content()
+    p = p.quo_ground(content) if content != 1 else p
+    return -p if p.LC < 0 else p
+
+
+def coefficients_in(p: PolyElement, variables: Sequence[sp.Symbol]
+                    ) -> dict[tuple[int, ...], PolyElement]:
+    """``p`` as a polynomial in ``variables``: exponents in them -> coefficient, an element
+    of the same ring free of ``variables``."""
+    ring = p.ring
+    idx = [ring.symbols.index(v) for v in variables]
+    grouped: dict[tuple[int, ...], dict] = {}
+    for monom, c in p.items():
+        key = tuple(monom[i] for i in idx)
+        rest = list(monom)
+        for i in idx:
+            rest[i] = 0
+        grouped.setdefault(key, {})[tuple(rest)] = c
+    return {k: ring.from_dict(terms) for k, terms in grouped.items()}
+
+
+def gcd(polys: Sequence[PolyElement]) -> PolyElement:
+    """Greatest common divisor of polynomials (over Q: monic in the ring's order), from the
+    shortest up; it stops at a constant, which every later gcd keeps."""
+    ordered = sorted(polys, key=len)
+    out = ordered[0]
+    for p in ordered[1:]:
+        if out.is_ground:
+            break
+        out = out.gcd(p)
+    return out.ring.one if out.is_ground and out else out
+
+
+def determinant(m: Sequence[Sequence[PolyElement]]) -> PolyElement:
+    """Determinant of a small square matrix of ring elements, by cofactor expansion along
+    the first row (exact, division-free)."""
+    n = len(m)
+    if n == 1:
+        return m[0][0]
+    out = m[0][0].ring.zero
+    for j in range(n):
+        if m[0][j]:
+            minor = [row[:j] + row[j + 1:] for row in m[1:]]
+            term = m[0][j] * determinant(minor)
+            out = out - term if j % 2 else out + term
+    return out
+
+
+def primitive_in(p: PolyElement, variables: Sequence[sp.Symbol]) -> PolyElement:
+    """The primitive part of ``p`` as a polynomial in ``variables`` with coefficients in the
+    ring's other symbols (Gauss's lemma: ``p`` divided by the gcd of those coefficients),
+    with integer coefficients of gcd 1 and a positive leading coefficient (lex): the unique
+    representative of ``p`` up to a factor free of ``variables``."""
+    if not p:
+        return p
+    parts = [c for _, c in sorted(coefficients_in(p, variables).items())]
+    content = gcd(parts)
+    if not content.is_ground:
+        p = p.exquo(content)
+    return _normalized_sign(p)
+
+
+def study_product(*factors: Sequence[PolyElement]) -> tuple[PolyElement, ...]:
+    """Ordered dual-quaternion product of Study tuples of ring elements (004 eq. 6-7)."""
+    acc = tuple(factors[0])
+    for f in factors[1:]:
+        acc = cv.study_product(acc, f)
+    return acc
+
+
+def as_expr(p: PolyElement) -> sp.Expr:
+    """The polynomial as an expanded sympy expression."""
+    return p.as_expr()
+
+
+# ------------------------------------------------------------------ expressions
+def expression(terms: Iterable[tuple[tuple[int, ...], Fraction | int]], gens: Sequence[sp.Symbol],
+               powers: dict | None = None) -> sp.Expr:
+    """A polynomial given as distinct monomials ``(exponents, coefficient)`` as the sympy
+    expression ``sp.Add(*[c * sp.Mul(*[g**k ...]) ...])``, built from its canonical
+    arguments without sympy's flattening (several times faster on thousands of terms): each
+    product's factors and the sum's terms sorted by sympy's canonical key, the number first,
+    as ``Mul.flatten`` and ``Add.flatten`` leave them (``tests/test_typed_polynomials.py``
+    pins the two equal).  ``powers`` caches ``g**k`` across calls."""
+    powers = {} if powers is None else powers
+    args, constant = [], None
+    for e, c in terms:
+        c = Fraction(c)
+        coeff = sp.Rational(c.numerator, c.denominator)
+        if coeff == 0:
+            continue
+        factors = []
+        for g, k in zip(gens, e):
+            if k:
+                p = powers.get((g, k))
+                if p is None:
+                    p = powers[(g, k)] = g if k == 1 else sp.Pow(g, k)
+                factors.append(p)
+        if not factors:
+            constant = coeff if constant is None else constant + coeff
+            continue
+        factors.sort(key=_args_sortkey)
+        if coeff != 1:
+            factors.insert(0, coeff)
+        args.append(sp.Mul._from_args(factors) if len(factors) > 1 else factors[0])
+    args.sort(key=_args_sortkey)
+    if constant is not None and constant != 0:
+        args.insert(0, constant)
+    if not args:
+        return sp.Integer(0)
+    return sp.Add._from_args(args) if len(args) > 1 else args[0]
+
+
+def terms_of(expr: sp.Expr, gens: Sequence[sp.Symbol]) -> dict[tuple[int, ...], Fraction] | None:
+    """An expanded polynomial expression with rational coefficients as exponents ->
+    coefficient over ``gens``; None when it is not one (then the caller uses sympy)."""
+    index = {g: i for i, g in enumerate(gens)}
+    out: dict[tuple[int, ...], Fraction] = {}
+    for term in sp.Add.make_args(expr):
+        coeff, rest = term.as_coeff_Mul()
+        if not coeff.is_Rational:
+            return None
+        e = [0] * len(gens)
+        for f in sp.Mul.make_args(rest):
+            if f == 1:
+                continue
+            base, k = f.as_base_exp()
+            i = index.get(base)
+            if i is None or not (k.is_Integer and k > 0):
+                return None
+            e[i] += int(k)
+        key = tuple(e)
+        out[key] = out.get(key, Fraction(0)) + Fraction(int(coeff.p), int(coeff.q))
+    return {k: c for k, c in out.items() if c}
+
+
+def _flint_poly(expr: sp.Expr, gens: Sequence[sp.Symbol]):
+    """``(poly, den)``: FLINT's ``fmpz_mpoly`` of ``den * expr`` (lex on ``gens``, ``den``
+    the least common denominator), or None when python-flint is missing or ``expr`` is not
+    a polynomial with rational coefficients in ``gens``."""
+    try:
+        import flint
+    except ImportError:  # pragma: no cover - python-flint is a dependency
+        return None
+    terms = terms_of(expr, gens) if gens else None
+    if not terms:
+        return None
+    den = math.lcm(*(c.denominator for c in terms.values()))
+    ctx = flint.fmpz_mpoly_ctx.get(tuple(f"v{i}" for i in range(len(gens))), "lex")
+    return ctx.from_dict({e: int(c * den) for e, c in terms.items()}), den
+
+
+def _from_flint(poly, gens, scale: Fraction = Fraction(1), powers: dict | None = None):
+    return expression(((tuple(e), scale * int(c)) for e, c in poly.to_dict().items()), gens,
+                      powers)
+
+
+def discriminant(expr: sp.Expr, q: sp.Symbol) -> sp.Expr:
+    """``sympy.discriminant(expr, q)``, expanded, of a polynomial with rational coefficients
+    of degree >= 2 in ``q``, computed by FLINT (``(-1)^(n(n-1)/2) res(f, f') / lc(f)``, the
+    same definition); anything else goes to sympy."""
+    gens = tuple(_sort_gens(expr.free_symbols | {q}))
+    flint_poly = _flint_poly(expr, gens)
+    if flint_poly is None or int(flint_poly[0].degrees()[gens.index(q)]) < 2:
+        return sp.expand(sp.discriminant(expr, q))
+    poly, den = flint_poly
+    n = int(poly.degrees()[gens.index(q)])
+    disc = poly.discriminant(f"v{gens.index(q)}")
+    return _from_flint(disc, gens, Fraction(1, den ** (2 * n - 2)))
+
+
+def factor_list(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
+    """``sympy.factor_list(expr)`` of an expanded polynomial with rational coefficients,
+    computed by FLINT's multivariate factorization (python-flint) where it is installed:
+    the same constant and the same irreducible factors, each primitive over Z with a
+    positive leading coefficient in the lexicographic order of sympy's sorted generators
+    (factors in FLINT's order; the callers sort them).  Anything else goes to sympy."""
+    gens = tuple(_sort_gens(expr.free_symbols)) if expr.free_symbols else ()
+    flint_poly = _flint_poly(expr, gens)
+    if flint_poly is None:
+        return sp.factor_list(expr)
+    poly, den = flint_poly
+    constant, factors = poly.factor()
+    constant = sp.Rational(int(constant), den)
+    out = []
+    powers: dict = {}
+    for f, k in factors:
+        if int(f.leading_coefficient()) < 0:  # pragma: no cover - FLINT returns them positive
+            f, constant = -f, constant * (-1) ** int(k)
+        out.append((_from_flint(f, gens, powers=powers), int(k)))
+    return constant, out
+

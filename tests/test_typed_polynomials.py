@@ -1,0 +1,144 @@
+"""Typed polynomial arithmetic (bonered_alg/algebra/polyring.py; issue 15, item 4): every
+fast path gives exactly what the plain sympy computation it replaces gives, which is what
+keeps the derivations' outputs byte-identical."""
+
+import random
+from fractions import Fraction
+
+import pytest
+import sympy as sp
+
+from bonered_alg.algebra import polyring as pr
+from bonered_alg.elimination import sphere_leg
+
+S = sp.symbols("a b c x_1 y_0 z10 z9", real=True)
+
+
+def _random_terms(rng: random.Random, n: int, nvars: int) -> dict:
+    out = {}
+    for _ in range(n):
+        e = tuple(rng.choice((0, 0, 1, 2, 3)) for _ in range(nvars))
+        out[e] = Fraction(rng.choice((-1, 1)) * rng.randint(1, 9), rng.choice((1, 1, 2, 7)))
+    return out
+
+
+def _plain(terms: dict, gens) -> sp.Expr:
+    return sp.Add(*[sp.Rational(c.numerator, c.denominator) * sp.Mul(*[g**k for g, k in
+                                                                        zip(gens, e)])
+                    for e, c in terms.items()])
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_expression_is_the_expression_sympy_builds(seed):
+    rng = random.Random(seed)
+    terms = _random_terms(rng, rng.choice((1, 2, 5, 40)), len(S))
+    if seed % 5 == 0:
+        terms[(0,) * len(S)] = Fraction(-3, 2)  # a constant term
+    built = pr.expression(terms.items(), S)
+    plain = _plain(terms, S)
+    assert built == plain
+    assert sp.srepr(built) == sp.srepr(plain)
+    assert pr.terms_of(plain, S) == {e: c for e, c in terms.items() if c}
+
+
+def test_expression_of_nothing_is_zero():
+    assert pr.expression([], S) == 0
+    assert pr.expression([((0,) * len(S), 0)], S) == 0
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_factor_list_is_sympys(seed):
+    """FLINT's factorization, normalized, against sympy.factor_list: products of random
+    factors, some repeated, with a rational and negative constant."""
+    rng = random.Random(100 + seed)
+    gens = S[:4]
+    expr = sp.Rational(rng.choice((-6, -1, 1, 4)), rng.choice((1, 3)))
+    for _ in range(rng.randint(1, 3)):
+        f = _plain(_random_terms(rng, rng.randint(1, 4), len(gens)), gens)
+        if f.free_symbols:
+            expr *= f ** rng.choice((1, 1, 2))
+    expr = sp.expand(expr)
+    constant, factors = pr.factor_list(expr)
+    reference = sp.factor_list(expr)
+    assert constant == reference[0]
+    key = lambda t: sp.srepr(t)  # noqa: E731
+    assert sorted(factors, key=key) == sorted(reference[1], key=key)
+    assert [sp.srepr(f) for f, _ in sorted(factors, key=key)] == \
+        [sp.srepr(f) for f, _ in sorted(reference[1], key=key)]
+
+
+def test_factor_list_leaves_non_polynomials_to_sympy():
+    x, y = S[:2]
+    assert pr.factor_list(sp.Integer(6)) == sp.factor_list(sp.Integer(6))
+    expr = sp.expand((x**2 - 2) * (x + sp.sqrt(3) * y))  # an irrational coefficient
+    assert pr.terms_of(expr, (x, y)) is None
+    assert pr.factor_list(expr) == sp.factor_list(expr)
+
+
+def test_primitive_part_and_determinant():
+    x, y, a, b = S[3], S[4], S[0], S[1]
+    ring = pr.ring_over((x, y, a, b))
+    p = pr.polynomial(ring, sp.expand(-(a**2 + 1) * (3 * x**2 * a - y * b + 2) / 5))
+    prim = pr.primitive_in(p, (x, y))
+    assert pr.as_expr(prim) == sp.expand(3 * x**2 * a - y * b + 2)
+    m = sp.Matrix(3, 3, lambda i, j: (a + i) * x**j - b * y**i + i * j)
+    det = pr.determinant([[pr.polynomial(ring, sp.expand(e)) for e in row]
+                          for row in m.tolist()])
+    assert sp.expand(pr.as_expr(det) - m.det(method="berkowitz")) == 0
+    assert pr.polynomial(ring, 0) == ring.zero
+    with pytest.raises(ValueError, match="not a polynomial"):
+        pr.polynomial(ring, 1 / x)
+
+
+def _sphere_by_expressions(d, platform, minpolys):
+    """The sphere condition the way the module computed it before the typed ring:
+    expand, numerator over a common denominator, reduce modulo the minimal polynomials,
+    primitive part in the platform's coordinates and the stroke."""
+    m = sphere_leg.moved(d, platform)
+    expr = d.stroke**2 * sum(c**2 for c in m[:4]) - 4 * sum(c**2 for c in m[4:])
+    num = sp.expand(sp.fraction(sp.together(sp.expand(expr)))[0])
+    for c, mp in minpolys.items():
+        if num.has(c):
+            gens = (c, *sorted(num.free_symbols - {c}, key=str))
+            num = sp.Poly(num, *gens).rem(sp.Poly(mp, *gens)).as_expr()
+    gens = sorted(set().union(*(sp.sympify(c).free_symbols for c in platform)) | {d.stroke},
+                  key=str)
+    _, prim = sp.Poly(num, *gens).primitive()
+    return sp.expand(prim.as_expr())
+
+
+def test_sphere_condition_equals_the_expression_computation():
+    """A Stewart leg (layout rational in tan-half-angles, with sqrt(3) as a constant) and a
+    layout of free symbols."""
+    from bonered_alg.mechanisms import stewart
+    from bonered_alg.pipeline import stages
+    from bonered_alg.registry import load
+
+    mech = stages.build(load("stewart"))
+    closure = mech.closures[0]
+    minpolys = sphere_leg.minimal_polynomials({c.symbol: c.value for c in mech.constants})
+    d = sphere_leg.recognize(closure.legs[2])
+    fast = sphere_leg.sphere_condition(d, closure.platform, minpolys)
+    assert fast == _sphere_by_expressions(d, closure.platform, minpolys)
+    assert fast.has(stewart.s3) and sp.degree(fast, stewart.s3) == 1
+    x = sp.symbols("x_1 x_2 x_3 y_0 y_1 y_2 y_3", real=True)
+    a, b, q = sp.symbols("a1 a2 q", real=True)
+    free = sphere_leg.DistanceLeg("L", (a, b / (1 + a**2), sp.Integer(0)),
+                                  (b, sp.Integer(0), a), q)
+    platform = (sp.Integer(1), *x)
+    assert sphere_leg.sphere_condition(free, platform) == \
+        _sphere_by_expressions(free, platform, {})
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_discriminant_is_sympys(seed):
+    """FLINT's discriminant against sympy's, degrees 2 and 3 in q, rational coefficients and
+    a negative leading coefficient included."""
+    rng = random.Random(200 + seed)
+    q, gens = S[6], S[:3]
+    expr = sum(_plain(_random_terms(rng, rng.randint(1, 3), len(gens)), gens) * q**k
+               for k in range(rng.randint(2, 3) + 1))
+    expr = sp.expand(expr)
+    fast = pr.discriminant(expr, q)
+    reference = sp.expand(sp.discriminant(expr, q))
+    assert fast == reference and sp.srepr(fast) == sp.srepr(reference)
