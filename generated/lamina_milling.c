@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8b77c05b201c3c32a3119832aa249b354039ab93dbf09ef8507e58338f5df31e
+ * Derivation hash: 0fc8b13f848e10d9c034560312094d7a2aa72f98abb718780d968f6cdc39242a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "8b77c05b201c3c32a3119832aa249b354039ab93dbf09ef8507e58338f5df31e";
+const char bonered_derivation_hash[] = "0fc8b13f848e10d9c034560312094d7a2aa72f98abb718780d968f6cdc39242a";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4d65a9b3d5cc81ecb6b77fdee852598ce141b1fc4f6d8e265d2d4068da38ce6f
+ * Derivation hash: 854fbce7f20707f803555493e664e2198b87cbd06f7281eeca2c2c1f32f79e48
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "4d65a9b3d5cc81ecb6b77fdee852598ce141b1fc4f6d8e265d2d4068da38ce6f";
+const char bonered_derivation_hash[] = "854fbce7f20707f803555493e664e2198b87cbd06f7281eeca2c2c1f32f79e48";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

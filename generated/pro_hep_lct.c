@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d0f6d55abc36debc3e4867b8d17ffb8370cdb56c6d3c34f9f6a87a3b77ee6f54
+ * Derivation hash: a365c920715a99f3c183e224b2f85bcef60af43d24dcf45e1d17c41d5d97d121
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "d0f6d55abc36debc3e4867b8d17ffb8370cdb56c6d3c34f9f6a87a3b77ee6f54";
+const char bonered_derivation_hash[] = "a365c920715a99f3c183e224b2f85bcef60af43d24dcf45e1d17c41d5d97d121";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d4be0dcd91dd31d0d6f9f9be016af77784ed2c5dd93c0360f5a2a0b8162a4807
+ * Derivation hash: 6d9326de077dc6c4bb99f7996408859a57dad7d725f357ae5bceefe58f02db14
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "d4be0dcd91dd31d0d6f9f9be016af77784ed2c5dd93c0360f5a2a0b8162a4807";
+const char bonered_derivation_hash[] = "6d9326de077dc6c4bb99f7996408859a57dad7d725f357ae5bceefe58f02db14";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

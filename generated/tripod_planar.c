@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 26411ccc596719eb71b821385ed5ff76e1d976c057b9ce811f8719e6fd72e53c
+ * Derivation hash: 414321476e63bd39f3f2246614374fa099fae2ce27360e1bca58aebdb3f008b3
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "26411ccc596719eb71b821385ed5ff76e1d976c057b9ce811f8719e6fd72e53c";
+const char bonered_derivation_hash[] = "414321476e63bd39f3f2246614374fa099fae2ce27360e1bca58aebdb3f008b3";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 29cafb9e158c2e59a46e8bf1d377ee4768fe45ea12a1b94e99dbd5d0b37639b9
+ * Derivation hash: dfe8747ade8f2416e74de68c457285960bbee575e0dc617638055cd2d023fd9c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "29cafb9e158c2e59a46e8bf1d377ee4768fe45ea12a1b94e99dbd5d0b37639b9";
+const char bonered_derivation_hash[] = "dfe8747ade8f2416e74de68c457285960bbee575e0dc617638055cd2d023fd9c";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -125,20 +125,20 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
         if form is not None and form.platform:
             if form.platform not in frames:
                 frames[form.platform] = leg_lines.platform_frame(
-                    [sp.sympify(c).subs(sub) for c in form.platform], pose)
+                    [sp.sympify(c).xreplace(sub) for c in form.platform], pose)
             d, scale, row = leg_lines.distance_row(frames[form.platform], form.base,
                                                    form.point, st.joint)
             rows[st.joint] = row
             pivots.append(d)
             scales.append(scale)
             continue
-        d = sp.diff(g, st.joint).subs(sub)
-        dgs = [sp.diff(g, s).subs(sub) for s in study]
+        d = sp.diff(g, st.joint).xreplace(sub)
+        dgs = [sp.diff(g, s).xreplace(sub) for s in study]
         dgx = [sp.Add(*[a * ds[i][m] for i, a in enumerate(dgs) if a != 0 and ds[i][m] != 0])
                for m in range(len(pose))]
         row = []
         for m in range(len(pose)):
-            acc = dgx[m] + sum(sp.diff(g, prev.joint).subs(sub) * rows[prev.joint][m]
+            acc = dgx[m] + sum(sp.diff(g, prev.joint).xreplace(sub) * rows[prev.joint][m]
                                for prev in steps[: steps.index(st)])
             row.append(-acc / d)
         rows[st.joint] = row
@@ -152,27 +152,27 @@ def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
     c = spec.constants
 
     def step(st: IKStep) -> IKStep:
-        return IKStep(st.joint, sp.expand(sp.sympify(st.generator).subs(c)), st.degree,
-                      sp.sympify(st.A).subs(c), sp.sympify(st.B).subs(c),
-                      sp.sympify(st.C).subs(c), st.source)
+        return IKStep(st.joint, sp.expand(sp.sympify(st.generator).xreplace(c)), st.degree,
+                      sp.sympify(st.A).xreplace(c), sp.sympify(st.B).xreplace(c),
+                      sp.sympify(st.C).xreplace(c), st.source)
 
     return IKModuleSpec(
         **{**spec.__dict__,
            "steps": [step(st) for st in spec.steps],
            "fk_steps": [step(st) for st in spec.fk_steps],
-           "fk_system": [sp.sympify(g).subs(c) for g in spec.fk_system],
-           "singularities": [(n, sp.sympify(e).subs(c), m) for n, e, m in spec.singularities],
-           "limits": [(lim[0], sp.sympify(lim[1]).subs(c), *lim[2:]) for lim in spec.limits],
-           "pose_functions": [(f[0], f[1], [sp.sympify(e).subs(c) for e in f[2]], f[3])
+           "fk_system": [sp.sympify(g).xreplace(c) for g in spec.fk_system],
+           "singularities": [(n, sp.sympify(e).xreplace(c), m) for n, e, m in spec.singularities],
+           "limits": [(lim[0], sp.sympify(lim[1]).xreplace(c), *lim[2:]) for lim in spec.limits],
+           "pose_functions": [(f[0], f[1], [sp.sympify(e).xreplace(c) for e in f[2]], f[3])
                               for f in spec.pose_functions],
-           "functions": [(f[0], f[1], f[2], [sp.sympify(e).subs(c) for e in f[3]], f[4])
+           "functions": [(f[0], f[1], f[2], [sp.sympify(e).xreplace(c) for e in f[3]], f[4])
                          for f in spec.functions],
-           "pose_to_study": {k: sp.sympify(v).subs(c) for k, v in spec.pose_to_study.items()},
-           "study_to_pose": ({k: sp.sympify(v).subs(c) for k, v in spec.study_to_pose.items()}
+           "pose_to_study": {k: sp.sympify(v).xreplace(c) for k, v in spec.pose_to_study.items()},
+           "study_to_pose": ({k: sp.sympify(v).xreplace(c) for k, v in spec.study_to_pose.items()}
                              if spec.study_to_pose else None),
            "rps": _rps_with_constants(spec.rps, c) if spec.rps else None,
            "passive": [_recovery_with_constants(r, c) for r in spec.passive],
-           "end_effector": (tuple(sp.sympify(e).subs(c) for e in spec.end_effector)
+           "end_effector": (tuple(sp.sympify(e).xreplace(c) for e in spec.end_effector)
                             if spec.end_effector else None),
            "constants": None})
 
@@ -185,21 +185,21 @@ def _recovery_with_constants(rec, c: dict):
     steps = []
     for st in rec.steps:
         if isinstance(st, LinearStep):
-            steps.append(LinearStep(st.variable, tuple((sp.sympify(b).subs(c),
-                                                        sp.sympify(k).subs(c))
+            steps.append(LinearStep(st.variable, tuple((sp.sympify(b).xreplace(c),
+                                                        sp.sympify(k).xreplace(c))
                                                        for b, k in st.candidates)))
         elif isinstance(st, QuadraticStep):
-            steps.append(QuadraticStep(st.variable, tuple(sp.sympify(e).subs(c)
+            steps.append(QuadraticStep(st.variable, tuple(sp.sympify(e).xreplace(c)
                                                           for e in st.coefficients)))
         else:
-            steps.append(SphericalStep(st.variables, tuple(sp.sympify(e).subs(c)
+            steps.append(SphericalStep(st.variables, tuple(sp.sympify(e).xreplace(c)
                                                            for e in st.rotation)))
     return replace(rec, steps=tuple(steps))
 
 
 def _rps_with_constants(rps: RPSSystem, c: dict) -> RPSSystem:
     def sub(e):
-        return sp.sympify(e).subs(c)
+        return sp.sympify(e).xreplace(c)
 
     return RPSSystem(
         rps.closure, rps.angles, rps.joints,
@@ -289,9 +289,9 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     gens = [compact[st.joint].generator() if st.joint in compact else sp.expand(st.generator)
             for st in spec.steps]
     args = [*spec.pose, *spec.joints, *par]
-    g_pose = [g.subs(sub) for g in gens]
+    g_pose = [g.xreplace(sub) for g in gens]
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
-    jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).subs(sub)
+    jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).xreplace(sub)
     tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, lean, compact)
     # pivots of linear steps that can vanish (a constant pivot never does)
     linear = [k for k, st in enumerate(spec.steps)
