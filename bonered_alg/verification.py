@@ -88,3 +88,35 @@ def in_ideal(expr: sp.Expr, basis: Sequence[sp.Expr], gens: Sequence[sp.Symbol])
         return sp.expand(expr) == 0
     _, rem = sp.reduced(sp.expand(expr), list(basis), *gens, order="grevlex")
     return sp.expand(rem) == 0
+
+
+# the functions of one argument whose values an mpmath evaluation keeps (huge derived
+# expressions repeat tan(alpha/2), sqrt(3) and mpf(1)/mpf(2) thousands of times)
+_MEMO_FUNCTIONS = ("mpf", "tan", "sin", "cos", "atan", "sqrt")
+
+
+def mpmath_function(args, expr):
+    """``sympy.lambdify(args, expr, "mpmath")`` whose functions of one argument (``tan``,
+    ``sqrt``, the constants ``mpf(1)``, ...) remember their values: the same printed code
+    and the same numbers, operation for operation (mpmath rounds each call correctly, so a
+    value computed once equals the value computed again), without recomputing ``tan`` of
+    the same angle at every occurrence.  The values are those of the working precision at
+    their first call: call the function at one precision only."""
+    import mpmath
+
+    namespace = {name: _remembering(getattr(mpmath, name)) for name in _MEMO_FUNCTIONS}
+    return sp.lambdify(args, expr, modules=[namespace, "mpmath"])
+
+
+def _remembering(func):
+    """``func`` of one argument with its values kept (keyed by the argument's value: mpmath
+    turns equal ints, floats and mpf into the same number)."""
+    values = {}
+
+    def call(a):
+        v = values.get(a)
+        if v is None:
+            v = values[a] = func(a)
+        return v
+
+    return call

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0fc8b13f848e10d9c034560312094d7a2aa72f98abb718780d968f6cdc39242a
+ * Derivation hash: 93aceb31a08de9c4c5b2fda550e979b694f63b8826f1ae729a1f6f531d83d768
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "0fc8b13f848e10d9c034560312094d7a2aa72f98abb718780d968f6cdc39242a";
+const char bonered_derivation_hash[] = "93aceb31a08de9c4c5b2fda550e979b694f63b8826f1ae729a1f6f531d83d768";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

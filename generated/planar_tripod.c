@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 854fbce7f20707f803555493e664e2198b87cbd06f7281eeca2c2c1f32f79e48
+ * Derivation hash: 45a5d9912d776b85676a83ceb238470ab3ab1a4212eb59abc5406c6d5552688e
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "854fbce7f20707f803555493e664e2198b87cbd06f7281eeca2c2c1f32f79e48";
+const char bonered_derivation_hash[] = "45a5d9912d776b85676a83ceb238470ab3ab1a4212eb59abc5406c6d5552688e";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a365c920715a99f3c183e224b2f85bcef60af43d24dcf45e1d17c41d5d97d121
+ * Derivation hash: b5d811c87cd7cd1ffb8d991f1a169a89e21d5a08bf885b8dbca6c52b6baa718b
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "a365c920715a99f3c183e224b2f85bcef60af43d24dcf45e1d17c41d5d97d121";
+const char bonered_derivation_hash[] = "b5d811c87cd7cd1ffb8d991f1a169a89e21d5a08bf885b8dbca6c52b6baa718b";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6d9326de077dc6c4bb99f7996408859a57dad7d725f357ae5bceefe58f02db14
+ * Derivation hash: 3065d27e0445514b1a4bd4dc992e4b8db696385f187adb709bc4a6bea011f505
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "6d9326de077dc6c4bb99f7996408859a57dad7d725f357ae5bceefe58f02db14";
+const char bonered_derivation_hash[] = "3065d27e0445514b1a4bd4dc992e4b8db696385f187adb709bc4a6bea011f505";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 414321476e63bd39f3f2246614374fa099fae2ce27360e1bca58aebdb3f008b3
+ * Derivation hash: 2d46494c4a56931a40b9e3e9e810c974de6f1a66349db83b18e246570da4d86c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "414321476e63bd39f3f2246614374fa099fae2ce27360e1bca58aebdb3f008b3";
+const char bonered_derivation_hash[] = "2d46494c4a56931a40b9e3e9e810c974de6f1a66349db83b18e246570da4d86c";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dfe8747ade8f2416e74de68c457285960bbee575e0dc617638055cd2d023fd9c
+ * Derivation hash: 606bc02ae4ab414b3bf0a41b148dbc864a0e19dbc579e4b5c967dfebb72a748a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "dfe8747ade8f2416e74de68c457285960bbee575e0dc617638055cd2d023fd9c";
+const char bonered_derivation_hash[] = "606bc02ae4ab414b3bf0a41b148dbc864a0e19dbc579e4b5c967dfebb72a748a";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

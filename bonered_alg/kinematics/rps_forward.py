@@ -93,12 +93,24 @@ def _clear(expr: sp.Expr, mech, ui: sp.Symbol, uj: sp.Symbol) -> sp.Expr:
     return sp.expand(primitive.as_expr())
 
 
-def rps_system(mech, closure) -> RPSSystem | None:
-    """The circle-distance system of ``closure``, or None if it is not a 3-RPS closure."""
+def _rps_parts(closure) -> list | None:
+    """Each leg's :func:`_split`, or None if ``closure`` is not a 3-RPS closure."""
     if len(closure.legs) != 3:
         return None
     parts = [_split(leg) for leg in closure.legs]
-    if any(p is None for p in parts):
+    return None if any(p is None for p in parts) else parts
+
+
+def is_rps_closure(closure) -> bool:
+    """Whether ``closure`` has three R-P-S legs (the shape :func:`rps_system` reads),
+    without forming the system."""
+    return _rps_parts(closure) is not None
+
+
+def rps_system(mech, closure) -> RPSSystem | None:
+    """The circle-distance system of ``closure``, or None if it is not a 3-RPS closure."""
+    parts = _rps_parts(closure)
+    if parts is None:
         return None
     centres, platform = [], []
     for _u, _q, before, after in parts:

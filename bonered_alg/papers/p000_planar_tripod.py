@@ -40,7 +40,7 @@ from ..mechanisms.planar_tripod import (
     z,
     z2,
 )
-from ..verification import Verdict, constant_ratio, noise_bound, rounded
+from ..verification import Verdict, constant_ratio, mpmath_function, noise_bound, rounded
 from .planar_stage import output_determinant_with_ik
 
 R = {"real": True}
@@ -161,11 +161,11 @@ def _verify_tripod_velocity(ik, poses, geo) -> list:
     import numpy as np
 
     ra_, rb_ = float(geo[ra]), float(geo[rb])
-    jac = sp.lambdify(POSE, sp.Matrix([ik[q] for q in JOINTS]).jacobian(
-        sp.Matrix(POSE)).subs(geo), "mpmath")
+    jac = mpmath_function(POSE, sp.Matrix([ik[q] for q in JOINTS]).jacobian(
+        sp.Matrix(POSE)).xreplace(geo))
     ja_s, jb_s = _printed_eq26()
     q17 = dict(zip((q1, q2, q3), _printed_eq17()))
-    eq26 = sp.lambdify(POSE, [ja_s.subs(geo), jb_s.subs(q17).subs(geo)], "numpy")
+    eq26 = sp.lambdify(POSE, [ja_s.xreplace(geo), jb_s.subs(q17).xreplace(geo)], "numpy")
     rng = np.random.default_rng(11)
     err = dict.fromkeys(("27", "29", "34", "35"), 0.0)
     ckz = 0.0
@@ -282,8 +282,8 @@ def _verify_planar_singularity(deriv, ik, geo) -> list:
                  + b_[1, 6] * (b_[2, 2] * b_[3, 1] - b_[2, 1] * b_[3, 2]))
     ok40 = sp.expand(printed40 + planar) == 0
     # the tripod factor vanishes: derived and printed det d(q4..q6)/d(z, alpha, beta)
-    jac = sp.lambdify(POSE, sp.Matrix([ik[q] for q in (q4, q5, q6)]).jacobian(
-        sp.Matrix([z, alpha, beta])).subs(geo), "mpmath")
+    jac = mpmath_function(POSE, sp.Matrix([ik[q] for q in (q4, q5, q6)]).jacobian(
+        sp.Matrix([z, alpha, beta])).xreplace(geo))
     a0 = 0.2
 
     def derived_det(zz):
@@ -435,8 +435,8 @@ def _verify(deriv) -> list:
     printed17, printed21 = _printed_eq17(), _printed_eq21()
     for k, qk in enumerate(JOINTS):
         pr = printed17[k] if k < 3 else printed21[k - 3]
-        f_d = sp.lambdify(POSE, ik[qk].subs(geo), "mpmath")
-        f_p = sp.lambdify(POSE, pr.subs(geo), "mpmath")
+        f_d = mpmath_function(POSE, ik[qk].xreplace(geo))
+        f_p = mpmath_function(POSE, pr.xreplace(geo))
         errs = [abs(float(f_d(*[p[s] for s in POSE])) - float(f_p(*[p[s] for s in POSE])))
                 for p in poses]
         err = max(errs)
@@ -450,9 +450,9 @@ def _verify(deriv) -> list:
     # eq. (24)-(26): J_A^-1 J_B against the derived dq/dX for q1..q3
     ja, jb = _printed_eq26()
     q_sub = {q1: ik[q1], q2: ik[q2], q3: ik[q3]}
-    jnum = sp.lambdify(POSE, (jb / ja).subs(q_sub).subs(geo), "mpmath")
-    jder = sp.lambdify(POSE, sp.Matrix([ik[q] for q in (q1, q2, q3)]).jacobian(
-        sp.Matrix(POSE)).subs(geo), "mpmath")
+    jnum = mpmath_function(POSE, (jb / ja).subs(q_sub).xreplace(geo))
+    jder = mpmath_function(POSE, sp.Matrix([ik[q] for q in (q1, q2, q3)]).jacobian(
+        sp.Matrix(POSE)).xreplace(geo))
     err26 = 0.0
     worst_entry = None
     for p in poses:

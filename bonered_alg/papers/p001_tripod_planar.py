@@ -40,7 +40,7 @@ from ..mechanisms.tripod_planar import (
     x1,
     y1,
 )
-from ..verification import Verdict, in_ideal
+from ..verification import Verdict, in_ideal, mpmath_function
 from .planar_stage import output_determinant_with_ik
 
 R = {"real": True}
@@ -219,7 +219,7 @@ def _verify(deriv) -> list:
     # eq. (13), (21)-(23) numerically, through the full pose
     ik = deriv.ik_expressions()
     geo = {ra: GEO["ra"], rb: GEO["rb"], d: GEO["d"]}
-    f_ik = sp.lambdify(POSE, [ik[q].subs(geo) for q in JOINTS], "mpmath")
+    f_ik = mpmath_function(POSE, [ik[q].xreplace(geo) for q in JOINTS])
     errs = [0.0] * 6
     for paper in _random_paper_poses(40):
         paper = [mp.mpf(v) for v in paper]
@@ -278,10 +278,10 @@ def _verify_velocity(deriv) -> list:
     angles = [(rng.uniform(-0.35, 0.35), rng.uniform(-0.35, 0.35)) for _ in range(30)]
     derived_rows = {}
     for ref, (expr, coeffs) in printed.items():
-        der = [sp.diff(expr, v).subs(geo) for v in (ap, bp)]
+        der = [sp.diff(expr, v).xreplace(geo) for v in (ap, bp)]
         derived_rows[ref] = der
-        f_d = sp.lambdify((ap, bp), der, "mpmath")
-        f_p = sp.lambdify((ap, bp), [c.subs(geo) for c in coeffs], "mpmath")
+        f_d = mpmath_function((ap, bp), der)
+        f_p = mpmath_function((ap, bp), [c.xreplace(geo) for c in coeffs])
         err = [0.0, 0.0]
         for a, b in angles:
             dv, pv = f_d(a, b), f_p(a, b)
@@ -307,7 +307,7 @@ def _verify_velocity(deriv) -> list:
     }
     alt_err = {}
     for label, (dv, pv) in alt.items():
-        f_a = sp.lambdify((ap, bp), [dv.subs(geo), pv.subs(geo)], "mpmath")
+        f_a = mpmath_function((ap, bp), [dv.xreplace(geo), pv.xreplace(geo)])
         alt_err[label] = max(float(abs(u - w)) for u, w in (f_a(a, b) for a, b in angles))
     rb_fix = alt_err["eq. (28) with rb times the printed alpha' coefficient"]
     if rb_fix < 1e-9:
@@ -334,18 +334,19 @@ def _verify_velocity(deriv) -> list:
         a_, b_, c_ = (sp.sympify(e).subs(deriv.constants).xreplace(pxs) for e in
                       (st.A, st.B, st.C))
         qk_expr.append(((-b_ + sp.sqrt(b_**2 - 4 * a_ * c_)) / (2 * a_)).subs(halves))
-    jac_d = sp.lambdify((zz, ap, bp), sp.Matrix(qk_expr).jacobian([zz, ap, bp]).subs(geo),
-                        "mpmath")
-    par_num = sp.lambdify((ap, bp), [phi_d, x1_d.subs(geo), y1_d.subs(geo)], "mpmath")
+    # the geometry is integers: xreplace gives subs's expressions without its search
+    jac_qk = sp.Matrix(qk_expr).jacobian([zz, ap, bp]).xreplace(geo)
+    jac_d = mpmath_function((zz, ap, bp), jac_qk)
+    par_num = mpmath_function((ap, bp), [phi_d, x1_d.xreplace(geo), y1_d.xreplace(geo)])
     # eq. (33) as printed: rows x1', y1' (without rb; -s_b c_phi), z1', w = (a', b', phi')
-    jb2_rows = sp.lambdify((ap, bp), [alt[k][1].subs(geo) for k in list(alt)[1:2]]
-                           + [printed["001 eq. (28)"][1][1].subs(geo)]
-                           + [printed["001 eq. (29)"][1][0].subs(geo), list(alt.values())[2][1]
-                              .subs(geo)]
-                           + list(printed["001 eq. (27)"][1]), "mpmath")
-    der_rows = sp.lambdify((ap, bp), [c for ref in ("001 eq. (28)", "001 eq. (29)",
-                                                    "001 eq. (27)")
-                                      for c in derived_rows[ref]], "mpmath")
+    jb2_rows = mpmath_function((ap, bp), [alt[k][1].xreplace(geo) for k in list(alt)[1:2]]
+                               + [printed["001 eq. (28)"][1][1].xreplace(geo)]
+                               + [printed["001 eq. (29)"][1][0].xreplace(geo),
+                                  list(alt.values())[2][1].xreplace(geo)]
+                               + list(printed["001 eq. (27)"][1]))
+    der_rows = mpmath_function((ap, bp), [c for ref in ("001 eq. (28)", "001 eq. (29)",
+                                                        "001 eq. (27)")
+                                          for c in derived_rows[ref]])
     s3v = mp.sqrt(3)
     a_pts = [mp.matrix(p) for p in ((s3v / 2 * GEO["ra"], -GEO["ra"] / 2, 0), (0, GEO["ra"], 0),
                                     (-s3v / 2 * GEO["ra"], -GEO["ra"] / 2, 0))]
@@ -388,7 +389,7 @@ def _verify_velocity(deriv) -> list:
         f"derived rows of eq. (27)-(29); then J_B1 J_B2 matches to {err_c:.2e}"))
 
     # eq. (47), Fig. 5: forward singularity of the tripod, det d(q1..q3)/d(z1, alpha, beta)
-    out.append(_tripod_forward_singularity(qk_expr, zz, geo))
+    out.append(_tripod_forward_singularity(jac_qk, zz))
 
     # eq. (34)-(46): planar velocity model against the derived q4..q6(x2, y2, gamma)
     tgp = sp.Symbol("t_gamma_p", **R)
@@ -397,8 +398,8 @@ def _verify_velocity(deriv) -> list:
     for qk in (q4, q5, q6):
         st = next(s for s in deriv.steps if s.joint == qk)
         qp.append((-st.C / st.B).subs(deriv.constants).subs(mp_c).subs(tgp, sp.tan(gp_ / 2)))
-    jder = sp.lambdify((x2s, y2s, gp_), sp.Matrix(qp).jacobian([x2s, y2s, gp_]).subs(geo),
-                       "mpmath")
+    jder = mpmath_function((x2s, y2s, gp_),
+                           sp.Matrix(qp).jacobian([x2s, y2s, gp_]).xreplace(geo))
     s_, c_ = sp.sin(gp_), sp.cos(gp_)
     q4p, q5p, q6p = _printed_eq21(x2s, y2s, gp_)
     jc = s_ + _SQ3 * c_
@@ -409,7 +410,7 @@ def _verify_velocity(deriv) -> list:
          - (rb - _SQ3 * x2s - y2s) * s_ - q5p * (c_ - _SQ3 * s_)],
         [s_ + _SQ3 * c_, -c_ + _SQ3 * s_, (_SQ3 * rb + x2s + _SQ3 * y2s) * c_
          - (rb + _SQ3 * x2s - y2s) * s_ - q6p * (c_ - _SQ3 * s_)]])
-    jpr = sp.lambdify((x2s, y2s, gp_), (jd / jc).subs(geo), "mpmath")
+    jpr = mpmath_function((x2s, y2s, gp_), (jd / jc).xreplace(geo))
     err34 = 0.0
     for _ in range(30):
         args = (rng.uniform(-40, 40), rng.uniform(-40, 40), rng.uniform(-0.8, 0.8))
@@ -422,12 +423,12 @@ def _verify_velocity(deriv) -> list:
     return out
 
 
-def _tripod_forward_singularity(qk_expr, zz, geo):
-    """Where det d(q1, q2, q3)/d(z1, alpha_p, beta_p) of the derived tripod IK changes sign
-    for |alpha_p|, |beta_p| <= 20 deg (001 eq. 47 and Fig. 5), scanned in z1."""
+def _tripod_forward_singularity(jac, zz):
+    """Where det d(q1, q2, q3)/d(z1, alpha_p, beta_p) of the derived tripod IK (``jac``, at
+    the geometry GEO) changes sign for |alpha_p|, |beta_p| <= 20 deg (001 eq. 47 and Fig.
+    5), scanned in z1."""
     import numpy as np
 
-    jac = sp.Matrix(qk_expr).jacobian([zz, ap, bp]).subs(geo)
     f = sp.lambdify((zz, ap, bp), list(jac), modules="numpy", cse=True)
     grid = np.radians(np.linspace(-20.0, 20.0, 17))
     a, b, zv = np.meshgrid(grid, grid, np.linspace(0.5, 400.0, 800), indexing="ij")

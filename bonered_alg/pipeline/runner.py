@@ -18,6 +18,7 @@ from .algebra import Algebra
 from .provenance import derivation_hash
 from .results import Derivation, Record, frozen_map
 from .seeding import seeded_sympy_random
+from .sympy_memo import remembered_structure
 
 
 def current_hash(target: str | ModuleType) -> str:
@@ -34,8 +35,9 @@ def derive(target: str | ModuleType, engine: Engine | None = None,
            algebra: Algebra | None = None, progress=None) -> Record:
     """Every stage for one mechanism (registered name, or a declaration module), in memory;
     ``progress`` (e.g. ``print``) is told each stage and its time as it ends.  sympy's
-    random numbers are seeded for the derivation (:mod:`.seeding`)."""
-    with seeded_sympy_random():
+    random numbers are seeded for the derivation (:mod:`.seeding`), and its node counts
+    and free symbols remembered (:mod:`.sympy_memo`)."""
+    with seeded_sympy_random(), remembered_structure():
         return _derive(target, engine, budget_s, use_cache, algebra, progress)
 
 

@@ -30,6 +30,7 @@ from ..kinematics.rps_forward import (
     angles_from_platform,
     count_solutions,
     forward_singularity,
+    is_rps_closure,
     rps_system,
 )
 from ..kinematics.singularities import factored
@@ -53,7 +54,7 @@ class RPSEliminant:
     name = "3-RPS eliminant"
 
     def recognize(self, mech, closure, legs) -> bool:
-        return rps_system(mech, closure) is not None
+        return is_rps_closure(closure)
 
     def derive(self, mech, closure, legs, algebra) -> ClosureFK:
         rps = rps_system(mech, closure)

@@ -1,0 +1,64 @@
+"""The derivation's speed-ups change no result: sympy's node counts and free symbols
+remembered within a derivation (pipeline.sympy_memo), and mpmath evaluations that keep the
+values of their elementary functions (verification.mpmath_function)."""
+
+from __future__ import annotations
+
+import mpmath
+import sympy as sp
+from sympy.core import sorting
+from sympy.core.basic import Basic
+
+from bonered_alg.pipeline.sympy_memo import remembered_structure
+from bonered_alg.verification import mpmath_function
+
+x, y, z, a, b = sp.symbols("x y z a b", real=True)
+
+
+def _deep(n=6):
+    """A nested expression with repeated subtrees and Floats."""
+    e = x * y + sp.Float("0.25") * z
+    for k in range(n):
+        e = sp.expand(e * (x + k * y)) + sp.tan(a / 2) * e / (1 + b ** 2)
+    return e
+
+
+def test_cse_and_derivatives_are_the_same_with_remembered_structure():
+    exprs = [_deep(), sp.diff(_deep(4), x), sp.Derivative(sp.Function("f")(x), x) + x * y]
+    plain_cse = sp.cse(exprs, order="canonical")
+    plain_diff = [sp.diff(e, s) for e in exprs[:2] for s in (x, y, a)]
+    plain_free = [e.free_symbols for e in exprs]
+    with remembered_structure():
+        cse = sp.cse(exprs, order="canonical")
+        diff = [sp.diff(e, s) for e in exprs[:2] for s in (x, y, a)]
+        free = [e.free_symbols for e in exprs]
+        again = [e.free_symbols for e in exprs]
+    assert sp.srepr(cse) == sp.srepr(plain_cse)
+    assert [sp.srepr(d) for d in diff] == [sp.srepr(d) for d in plain_diff]
+    assert free == plain_free == again
+
+
+def test_free_symbols_is_a_new_set_each_time_and_sympy_is_restored():
+    original_count = sorting._node_count
+    original_free = Basic.__dict__["free_symbols"]
+    e = x * y + z
+    with remembered_structure():
+        assert sorting._node_count is not original_count
+        first = e.free_symbols
+        first.add(a)  # a caller may change the set it gets
+        assert e.free_symbols == {x, y, z}
+        assert sorting._node_count(sp.Float(1.5) + x) == original_count(sp.Float(1.5) + x)
+    assert sorting._node_count is original_count
+    assert Basic.__dict__["free_symbols"] is original_free
+
+
+def test_mpmath_function_gives_lambdify_s_numbers_bit_for_bit():
+    expr = (sp.tan(a / 2) ** 3 * sp.sqrt(3) - sp.sin(b) * sp.tan(a / 2) / (1 + sp.cos(b))
+            + sp.Rational(1, 3) * sp.atan(a * b) + sp.tan(a / 2))
+    with mpmath.workdps(40):
+        plain = sp.lambdify((a, b), [expr, sp.diff(expr, a)], "mpmath")
+        kept = mpmath_function((a, b), [expr, sp.diff(expr, a)])
+        for pa, pb in ((0.3, -0.2), (mpmath.mpf("0.1"), 2), (0.3, -0.2), (-0.0, 0.0)):
+            want, got = plain(pa, pb), kept(pa, pb)
+            assert all(isinstance(v, mpmath.mpf) for v in got)
+            assert [mpmath.mpf(v) for v in want] == [mpmath.mpf(v) for v in got]
