@@ -4,8 +4,9 @@ what a user would write instead of importing the generated module (issue 15's ba
 Written from the papers and the layouts, not from generated code: planar_tripod from 000
 eq. (17) and (21) with their derivatives; stewart from the leg vectors |t + R b_k - a_k|;
 pro_hep_lct from the two-link and slider-rod geometry of 004 eq. (14)-(16) (test geometry of
-tests/independent_pro_hep_lct.py).  Each returns joints in the generated module's order and
-dq/dX with X as in its POSE.
+tests/independent_pro_hep_lct.py); tripod_planar from 001 eq. (8), (10)-(13), (21)-(23) and
+their derivatives.  Each returns joints in the generated module's order and dq/dX with X as
+in its POSE, except tripod_planar, which works in 001's own coordinates (the bench converts).
 """
 
 from __future__ import annotations
@@ -272,3 +273,103 @@ def lamina_milling_statics(p, load, g):
     grad = (lam * g["G1"] + g["G2"]) * J[:, 0, :]
     grad[:, 2] += (1 - lam) * g["G1"] + g["G7"]
     return np.linalg.solve(np.swapaxes(J, -1, -2), (grad - load)[..., None])[..., 0]
+
+
+# ------------------------------------------------------------------ tripod_planar (001)
+def tripod_planar(p, ra=200.0, rb=200.0, d=0.0, jacobian=False):
+    """001 eq. (10)-(13), (8) and (21)-(23) in the paper's own coordinates p = (x, y, z,
+    alpha_p, beta_p, gamma_p): the legs q1..q3 of the 3-RPS tripod, then the planar stage's
+    q4..q6.  With ``jacobian``, dq/dp by the chain rule written out: the parasitic yaw phi
+    (eq. 10), B's origin (x1, y1) (eq. 11-12) and R depend on (alpha_p, beta_p) only, O2's
+    coordinates (x2, y2) in B and z1 (eq. 8) on (x, y, z, alpha_p, beta_p) too."""
+    x, y, z, a, b, g = (p[:, i] for i in range(6))
+    sa, ca, sb, cb = np.sin(a), np.cos(a), np.sin(b), np.cos(b)
+    u, w = sa * sb, ca + cb
+    f = np.arctan(u / w)
+    sf, cf = np.sin(f), np.cos(f)
+    x1 = -rb * cb * sf
+    y1 = rb * (ca * cf + sa * sb * sf - cb * cf) / 2
+    r00, r01, r02 = cb * cf, sa * sb * cf - ca * sf, ca * sb * cf + sa * sf
+    r10, r11, r12 = cb * sf, sa * sb * sf + ca * cf, ca * sb * sf - sa * cf
+    r20, r21, r22 = -sb, sa * cb, ca * cb
+    # eq. (8) for (x2, y2, z1): 2x2 system in x2, y2, then z1
+    ex, ey = x - x1 - d * r02, y - y1 - d * r12
+    det = r00 * r11 - r01 * r10
+    x2 = (ex * r11 - ey * r01) / det
+    y2 = (r00 * ey - r10 * ex) / det
+    z1 = z - d * r22 - r20 * x2 - r21 * y2
+    corners = [(np.cos(t), np.sin(t)) for t in (-np.pi / 6, np.pi / 2, 7 * np.pi / 6)]
+    q = np.empty((len(x), 6))
+    legs = []
+    for k, (kx, ky) in enumerate(corners):
+        bx = x1 + (r00 * kx + r01 * ky) * rb - ra * kx
+        by = y1 + (r10 * kx + r11 * ky) * rb - ra * ky
+        bz = z1 + (r20 * kx + r21 * ky) * rb
+        q[:, k] = np.sqrt(bx * bx + by * by + bz * bz)
+        legs.append((bx, by, bz))
+    sg, cg = np.sin(g), np.cos(g)
+    den = sg + S3 * cg
+    inv = 1.0 / den
+    m4, n4 = S3 * rb - 2 * x2, rb + 2 * y2
+    m5, n5 = S3 * rb + x2 - S3 * y2, rb - S3 * x2 - y2
+    m6, n6 = S3 * rb + x2 + S3 * y2, rb + S3 * x2 - y2
+    planar = ((m4, n4), (m5, n5), (m6, n6))
+    for k, (mk, nk) in enumerate(planar, start=3):
+        q[:, k] = (rb + mk * sg + nk * cg) * inv
+    if not jacobian:
+        return q
+    # d/d alpha_p and d/d beta_p of phi, sin/cos phi, x1, y1 and R
+    uu = 1.0 / (u * u + w * w)
+    fa, fb = (w * ca * sb + u * sa) * uu, (w * sa * cb + u * sb) * uu
+    sfa, sfb, cfa, cfb = cf * fa, cf * fb, -sf * fa, -sf * fb
+    x1a, x1b = -rb * cb * sfa, rb * sb * sf - rb * cb * sfb
+    y1a = rb * (-sa * cf + ca * cfa + ca * sb * sf + sa * sb * sfa - cb * cfa) / 2
+    y1b = rb * (ca * cfb + sa * cb * sf + sa * sb * sfb + sb * cf - cb * cfb) / 2
+    r00a, r00b = cb * cfa, -sb * cf + cb * cfb
+    r01a = ca * sb * cf + sa * sb * cfa + sa * sf - ca * sfa
+    r01b = sa * cb * cf + sa * sb * cfb - ca * sfb
+    r02a = -sa * sb * cf + ca * sb * cfa + ca * sf + sa * sfa
+    r02b = ca * cb * cf + ca * sb * cfb + sa * sfb
+    r10a, r10b = cb * sfa, -sb * sf + cb * sfb
+    r11a = ca * sb * sf + sa * sb * sfa - sa * cf + ca * cfa
+    r11b = sa * cb * sf + sa * sb * sfb + ca * cfb
+    r12a = -sa * sb * sf + ca * sb * sfa - ca * cf - sa * cfa
+    r12b = ca * cb * sf + ca * sb * sfb - sa * cfb
+    r20b = -cb
+    r21a, r21b = ca * cb, -sa * sb
+    r22a, r22b = -sa * cb, -ca * sb
+    # (x2, y2, z1): d/dx, d/dy (ex_x = ey_y = 1), d/dz (z1 only), d/d alpha_p, d/d beta_p
+    ida = 1.0 / det
+    exa, exb = -x1a - d * r02a, -x1b - d * r02b
+    eya, eyb = -y1a - d * r12a, -y1b - d * r12b
+    deta = r00a * r11 + r00 * r11a - r01a * r10 - r01 * r10a
+    detb = r00b * r11 + r00 * r11b - r01b * r10 - r01 * r10b
+    x2x, x2y = r11 * ida, -r01 * ida
+    x2a = (exa * r11 + ex * r11a - eya * r01 - ey * r01a - x2 * deta) * ida
+    x2b = (exb * r11 + ex * r11b - eyb * r01 - ey * r01b - x2 * detb) * ida
+    y2x, y2y = -r10 * ida, r00 * ida
+    y2a = (r00a * ey + r00 * eya - r10a * ex - r10 * exa - y2 * deta) * ida
+    y2b = (r00b * ey + r00 * eyb - r10b * ex - r10 * exb - y2 * detb) * ida
+    z1x, z1y = -r20 * x2x - r21 * y2x, -r20 * x2y - r21 * y2y
+    z1a = -d * r22a - r20 * x2a - r21a * y2 - r21 * y2a
+    z1b = -d * r22b - r20b * x2 - r20 * x2b - r21b * y2 - r21 * y2b
+    jac = np.empty((len(x), 6, 6))
+    for k, ((kx, ky), (bx, by, bz)) in enumerate(zip(corners, legs)):
+        iq = 1.0 / q[:, k]
+        bxa, bxb = x1a + (r00a * kx + r01a * ky) * rb, x1b + (r00b * kx + r01b * ky) * rb
+        bya, byb = y1a + (r10a * kx + r11a * ky) * rb, y1b + (r10b * kx + r11b * ky) * rb
+        bza, bzb = z1a + r21a * ky * rb, z1b + (r20b * kx + r21b * ky) * rb
+        bzq = bz * iq
+        jac[:, k, 0], jac[:, k, 1], jac[:, k, 2] = bzq * z1x, bzq * z1y, bzq
+        jac[:, k, 3] = (bx * bxa + by * bya + bz * bza) * iq
+        jac[:, k, 4] = (bx * bxb + by * byb + bz * bzb) * iq
+        jac[:, k, 5] = 0.0
+    dden = cg - S3 * sg
+    partials = (((-2 * sg), 2 * cg), (sg - S3 * cg, -S3 * sg - cg), (sg + S3 * cg, S3 * sg - cg))
+    for k, ((mk, nk), (px, py)) in enumerate(zip(planar, partials), start=3):
+        px, py = px * inv, py * inv  # dq/dx2, dq/dy2
+        jac[:, k, 0], jac[:, k, 1] = px * x2x + py * y2x, px * x2y + py * y2y
+        jac[:, k, 2] = 0.0
+        jac[:, k, 3], jac[:, k, 4] = px * x2a + py * y2a, px * x2b + py * y2b
+        jac[:, k, 5] = (mk * cg - nk * sg - q[:, k] * dden) * inv
+    return q, jac

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b5d811c87cd7cd1ffb8d991f1a169a89e21d5a08bf885b8dbca6c52b6baa718b
+ * Derivation hash: 159a3936b2baada074899886e34d13850a4e53ff57421a47d7e0dca2d82b9a8c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "b5d811c87cd7cd1ffb8d991f1a169a89e21d5a08bf885b8dbca6c52b6baa718b";
+const char bonered_derivation_hash[] = "159a3936b2baada074899886e34d13850a4e53ff57421a47d7e0dca2d82b9a8c";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3065d27e0445514b1a4bd4dc992e4b8db696385f187adb709bc4a6bea011f505
+ * Derivation hash: 6191272fb151d0a6df00adef9eb98e17224e322dcea55d5aa4dc65bdbf3b111c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "3065d27e0445514b1a4bd4dc992e4b8db696385f187adb709bc4a6bea011f505";
+const char bonered_derivation_hash[] = "6191272fb151d0a6df00adef9eb98e17224e322dcea55d5aa4dc65bdbf3b111c";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2d46494c4a56931a40b9e3e9e810c974de6f1a66349db83b18e246570da4d86c
+ * Derivation hash: 2e66bfa45c259a08aa160988de0ab71c36396921b1cb05c3ec7755f2817a224a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "2d46494c4a56931a40b9e3e9e810c974de6f1a66349db83b18e246570da4d86c";
+const char bonered_derivation_hash[] = "2e66bfa45c259a08aa160988de0ab71c36396921b1cb05c3ec7755f2817a224a";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

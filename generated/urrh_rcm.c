@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 606bc02ae4ab414b3bf0a41b148dbc864a0e19dbc579e4b5c967dfebb72a748a
+ * Derivation hash: 353868be9cce4aad027031ddf88dd1ff0474975e94df9f747ad24a9a47d96d2d
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "606bc02ae4ab414b3bf0a41b148dbc864a0e19dbc579e4b5c967dfebb72a748a";
+const char bonered_derivation_hash[] = "353868be9cce4aad027031ddf88dd1ff0474975e94df9f747ad24a9a47d96d2d";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -112,3 +112,26 @@ def test_the_sphere_condition_between_the_points_is_that_of_the_whole_chain():
     assert short != 0
     assert sp.expand(short - sphere_leg.sphere_condition(dw, wrong.product())) == 0 or \
         sp.expand(short + sphere_leg.sphere_condition(dw, wrong.product())) == 0
+
+
+def test_an_r_p_s_stroke_is_a_distance_on_the_chain_though_not_a_distance_leg():
+    """planar_tripod's tripod legs T(C_k) R(u_k) T(-+q_k) S T(D_k) (000 eq. 13, 18): the
+    stroke is |D_k - C_k| on every configuration (distance_on_chain, which the Jacobian's
+    leg-line rows rely on), but the leg's image has dimension 5, so the elimination does not
+    take the sphere condition as its ideal (certify refuses it); the planar P-R-P legs are
+    no distance legs at all."""
+    from bonered_alg.mechanisms import planar_tripod as pt
+
+    planar, tripod = pt.MECHANISM.closures
+    ra, rb = sp.Symbol("ra", real=True), sp.Symbol("rb", real=True)
+    expected = {"T1": ((ra, 0, 0), (rb, 0, 0)), "T2": ((0, ra, 0), (0, rb, 0)),
+                "T3": ((-ra, 0, 0), (-rb, 0, 0))}
+    for leg, q in zip(tripod.legs, sp.symbols("q4 q5 q6", real=True)):
+        dl = sphere_leg.distance_on_chain(leg)
+        assert dl is not None and dl.stroke == q
+        assert (dl.base, dl.platform) == tuple(tuple(map(sp.sympify, p))
+                                               for p in expected[leg.name])
+        assert sphere_leg.recognize(leg) is None or leg.name == "T3"  # T(-q): signed only
+    for leg in planar.legs:
+        assert sphere_leg.distance_on_chain(leg, {sp.Symbol("s3", real=True): sp.sqrt(3)}) \
+            is None

@@ -224,3 +224,26 @@ def test_eq_41_lacks_the_factor_3_ra():
         assert abs(jb[:, 5].sum() - 3 * ipt.RA * printed) < 1e-8 * ipt.RA
         assert abs(jb[:, 5].sum() - printed) > 1.0
     assert verdicts_of("planar_tripod")["000 eq. (41)"] == "erratum"
+
+
+def test_leg_line_rows_keep_the_generators_pivot_ratio(m, d):
+    """The tripod legs' Jacobian rows come from the leg line (codegen leg_line_steps): q_k
+    dq_k/dX = l . dl/dX.  Their input-singularity test |pivot| > rtol * scale must mean what
+    it meant for the generator g_k = A q_k^2 + C of the derivation: |dg/dq| / (|dg/dq| +
+    sum_m |dg/dX_m|), here computed from the generator itself (sympy, the pose map, 30
+    digits), equals |q| / (|q| + sum_m |q dq/dX_m|) from the generated module's J."""
+    pose = sp.symbols("x y z alpha beta gamma", real=True)
+    for p in poses(4):
+        q = m.ik(p, limits=False)
+        J = m.jacobian(p, limits=False)
+        at = dict(zip(pose, map(sp.Float, p, [30] * 6)))
+        for st in d.steps[3:]:
+            k = list(m.JOINTS).index(str(st.joint))
+            g = sp.sympify(st.generator).xreplace(dict(d.pose_to_study)).xreplace(
+                {sp.Symbol(n, real=True): v for n, v in m.PARAMETERS.items()})
+            value = {**at, st.joint: sp.Float(q[k], 30)}
+            pivot = abs(sp.diff(g, st.joint).evalf(30, subs=value))
+            rate = sum(abs(sp.diff(g, x).evalf(30, subs=value)) for x in pose)
+            ratio_generator = float(pivot / (pivot + rate))
+            ratio_line = abs(q[k]) / (abs(q[k]) + np.sum(np.abs(q[k] * J[k])))
+            assert ratio_line == pytest.approx(ratio_generator, rel=1e-9)

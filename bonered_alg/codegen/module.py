@@ -87,6 +87,9 @@ class IKModuleSpec:
     # IK steps of distance legs in their geometric form (joint -> sphere_leg.CompactSphere),
     # proved equal to the step's generator: the kernels evaluate these, not the expansions
     compact: dict | None = None
+    # IK steps whose stroke is proved to be the distance between two points of its leg
+    # (joint -> kinematics.leg_lines.LegLine): their Jacobian rows come from the leg's line
+    leg_lines: dict | None = None
 
 
 def _literal(value) -> str:
@@ -98,9 +101,19 @@ def _abs(e: sp.Expr) -> sp.Expr:
     return sp.Integer(0) if e == 0 else sp.Abs(e, evaluate=False)
 
 
+# A leg line's frame (R, t and their rates) is built from its platform's Study point in the
+# pose coordinates.  Where that point is small (a Stewart platform's: 246 operations,
+# planar_tripod's tripod on MP1: 173) the rows are far shorter than the chain rule through
+# the generator (planar_tripod's Jacobian kernel: 320 operations against 418); where it is a
+# large rational function of the pose (tripod_planar's tripod, below the planar stage the
+# pose describes: 6332) the frame alone outweighs the chain rule, which reuses the Study
+# coordinates' derivatives the other rows need anyway (that kernel: 6456 against 1756).
+LEG_LINE_MAX_OPS = 1000
+
+
 def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
                          joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol],
-                         sub: dict, compact: dict | None = None) -> list:
+                         sub: dict, lines: dict | None = None) -> list:
     """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21).
 
     Generator ``k`` involves only joints solved at steps ``<= k``, so ``dG/dq`` in the solve
@@ -109,23 +122,25 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
     the Study coordinates ``sub`` maps to the pose, and ``dg/dX`` is taken by the chain rule,
     ``sum_i dg/ds_i ds_i/dX``: differentiating the substituted generator instead multiplies
     out the pose map into every partial (the Stewart platform's kernel was 4x larger).  A
-    step in ``compact`` (a distance leg, whose generator involves its own stroke only) takes
-    its row from the leg's line (:mod:`..kinematics.leg_lines`), with the same ratio of pivot
-    to row scale.
+    step in ``lines`` (a stroke that is the distance between two points of its leg, whose
+    generator involves its own stroke only) takes its row from the leg's line
+    (:mod:`..kinematics.leg_lines`), with the same ratio of pivot to row scale, where its
+    platform's Study point is a small function of the pose (``LEG_LINE_MAX_OPS``).
     """
     from ..kinematics import leg_lines
 
     study = list(sub)
     ds = [[sp.diff(sub[s], x) for x in pose] for s in study]
-    frames: dict[tuple, leg_lines.PlatformFrame] = {}
+    frames: dict[tuple, leg_lines.PlatformFrame | None] = {}
     rows: dict[sp.Symbol, list[sp.Expr]] = {}
     pivots, scales = [], []
     for st, g in zip(steps, gens):
-        form = (compact or {}).get(st.joint)
-        if form is not None and form.platform:
-            if form.platform not in frames:
-                frames[form.platform] = leg_lines.platform_frame(
-                    [sp.sympify(c).xreplace(sub) for c in form.platform], pose)
+        form = (lines or {}).get(st.joint)
+        if form is not None and form.platform not in frames:
+            point = [sp.sympify(c).xreplace(sub) for c in form.platform]
+            frames[form.platform] = (leg_lines.platform_frame(point, pose)
+                                     if sp.count_ops(point) <= LEG_LINE_MAX_OPS else None)
+        if form is not None and frames[form.platform] is not None:
             d, scale, row = leg_lines.distance_row(frames[form.platform], form.base,
                                                    form.point, st.joint)
             rows[st.joint] = row
@@ -292,7 +307,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     g_pose = [g.xreplace(sub) for g in gens]
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
     jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).xreplace(sub)
-    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, lean, compact)
+    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, lean, spec.leg_lines)
     # pivots of linear steps that can vanish (a constant pivot never does)
     linear = [k for k, st in enumerate(spec.steps)
               if st.degree == 1 and not sp.diff(gens[k], st.joint).is_number]
@@ -519,6 +534,7 @@ def module_source(d, generator: str):
 
     m = d.mechanism
     rps_fk = next((f for f in d.fk if f.system is not None), None)
+    compact = compact_steps(d)
     spec = IKModuleSpec(
         name=m.name, title=m.title, source=m.source, derivation_hash=d.derivation_hash,
         generator=generator, parameters=list(m.parameters), pose=m.pose.coordinates,
@@ -552,7 +568,7 @@ def module_source(d, generator: str):
             (m.public_joint(b.joint), 2 * math.atan(b.declared) if b.joint in m.angle_joints
              else b.declared) for b in d.branches),
         public_joints=tuple(m.public_joint(q) for q in m.joints),
-        compact=compact_steps(d))
+        compact=compact, leg_lines=leg_line_steps(d, compact))
     source, ops, c_source = write_ik_module(spec)
     return GeneratedModule(m.name, source, frozen_map(ops), c_source=c_source)
 
@@ -577,6 +593,40 @@ def compact_steps(d) -> dict:
         form = sphere_leg.compact_sphere(dl, tuple(leg.closure.platform), st.generator, consts)
         if form is not None:
             out[st.joint] = form
+    return out
+
+
+def leg_line_steps(d, compact: dict) -> dict:
+    """The IK steps whose Jacobian row is taken from the leg's line
+    (:func:`_triangular_jacobian`): joint -> :class:`..kinematics.leg_lines.LegLine`.  A
+    step in ``compact`` (:func:`compact_steps`) qualifies with its form's points; any other
+    quadratic step ``A q^2 + C`` (no linear term, no other joint) qualifies where its leg's
+    stroke is proved to be the distance between a base point and a platform point on every
+    configuration of the leg (:func:`..elimination.sphere_leg.distance_on_chain`: an R-P-S
+    leg too).  Then the step's roots are ``+-|l|`` of the leg vector ``l`` at the pose, and
+    ``q dq/dX = l . dl/dX`` is the derivative of the IK solution whichever generator
+    gives it."""
+    from ..elimination import sphere_leg
+    from ..kinematics.leg_lines import LegLine
+
+    consts = dict(d.constants or {})
+    joints = set(d.mechanism.joints)
+    out = {}
+    for st in d.steps:
+        form = compact.get(st.joint)
+        if form is not None:
+            if form.platform:
+                out[st.joint] = LegLine(form.base, form.point, form.platform)
+            continue
+        if (st.degree != 2 or sp.sympify(st.B) != 0
+                or sp.sympify(st.generator).free_symbols & joints != {st.joint}):
+            continue
+        leg = next((r for r in d.legs if f"{r.closure.point}/{r.leg.name}" == st.source), None)
+        dl = sphere_leg.distance_on_chain(leg.leg, consts) if leg is not None else None
+        if dl is None or dl.stroke != st.joint:
+            continue
+        out[st.joint] = LegLine(*(tuple(sp.sympify(c).subs(consts) for c in pts)
+                                  for pts in (dl.base, dl.platform, leg.closure.platform)))
     return out
 
 

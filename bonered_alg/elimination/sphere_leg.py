@@ -67,9 +67,11 @@ def _vector(f) -> tuple[sp.Expr, ...] | None:
     return tuple(out)
 
 
-def recognize(leg: Leg) -> DistanceLeg | None:
+def recognize(leg: Leg, signed: bool = False) -> DistanceLeg | None:
     """The shape ``[T(A)] R... T(q) R... [T(-B)]`` with ``q`` the only active parameter and
-    only passive rotations in between; None for any other leg."""
+    only passive rotations in between; None for any other leg.  With ``signed`` the stroke
+    may also be ``T(-q)`` (the same distance ``|q|``; the sphere condition is even in
+    ``q``)."""
     fs = list(leg.factors)
     base = plat = (sp.Integer(0),) * 3
     if fs and (v := _vector(fs[0])) is not None:
@@ -81,13 +83,18 @@ def recognize(leg: Leg) -> DistanceLeg | None:
         return None
     i = active[0]
     stroke = fs[i]
-    if stroke.kind != "translation" or stroke.axis is None or not stroke.args[0].is_Symbol:
+    if stroke.kind != "translation" or stroke.axis is None:
+        return None
+    length = stroke.args[0]
+    if signed and (-length).is_Symbol:
+        length = -length
+    if not length.is_Symbol:
         return None
     others = fs[:i] + fs[i + 1:]
     if not others or any(f.role is not Role.PASSIVE or f.kind not in ("rotation", "quaternion")
                          for f in others):
         return None
-    return DistanceLeg(leg.name, base, plat, stroke.args[0])
+    return DistanceLeg(leg.name, base, plat, length)
 
 
 def moved(d: DistanceLeg, platform: tuple) -> tuple[sp.Expr, ...]:
@@ -231,6 +238,24 @@ def _between_the_points(leg: Leg, d: DistanceLeg) -> tuple[DistanceLeg, tuple]:
     if any(tuple(sp.expand(c) for c in e) != one for e in ends):  # pragma: no cover
         return d, leg.product()  # not the shape recognize() read: the full product
     return DistanceLeg(d.leg, zero, zero, d.stroke), ss.product(*fs)
+
+
+def distance_on_chain(leg: Leg, constants: dict | None = None) -> DistanceLeg | None:
+    """The leg's base point, platform point and stroke where the stroke is proved to be
+    the distance between them on *every* configuration of the leg: the shape of
+    :func:`recognize` (either sign of the stroke) and the sphere condition vanishing on the
+    chain product (step 1 of :func:`certify`), whatever the dimension of the chain's image
+    (an R-P-S leg, whose ideal is not the sphere condition, qualifies).  Then ``q^2 = |R B
+    + t - A|^2`` wherever the platform is at ``(R, t)``; None otherwise."""
+    d = recognize(leg, signed=True)
+    if d is None:
+        return None
+    try:
+        gen = sphere_condition(*_between_the_points(leg, d),
+                               minimal_polynomials(dict(constants or {})))
+    except ValueError:
+        return None
+    return d if gen == 0 else None
 
 
 def minimal_polynomials(constants: dict) -> dict:

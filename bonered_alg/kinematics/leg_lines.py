@@ -38,6 +38,17 @@ def _rational(e: sp.Expr) -> sp.Expr:
 
 
 @dataclass(frozen=True)
+class LegLine:
+    """A leg whose stroke is the distance from the base point ``base`` (A, in the frame the
+    platform moves in) to the platform point ``point`` (B, platform frame), with the
+    platform's Study point ``platform`` (in the Study coordinates)."""
+
+    base: tuple
+    point: tuple
+    platform: tuple
+
+
+@dataclass(frozen=True)
 class PlatformFrame:
     """A platform's rotation ``R`` (rows), translation ``t``, and per pose coordinate the
     angular velocity ``omega_m`` and ``t'_m``, as functions of the pose coordinates."""
