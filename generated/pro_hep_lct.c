@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 159a3936b2baada074899886e34d13850a4e53ff57421a47d7e0dca2d82b9a8c
+ * Derivation hash: b3465ad4fe6e4258bb3a2c3c19202ef40be6cb1c978128e67b8b9d61c99b229b
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "159a3936b2baada074899886e34d13850a4e53ff57421a47d7e0dca2d82b9a8c";
+const char bonered_derivation_hash[] = "b3465ad4fe6e4258bb3a2c3c19202ef40be6cb1c978128e67b8b9d61c99b229b";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

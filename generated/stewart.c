@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6191272fb151d0a6df00adef9eb98e17224e322dcea55d5aa4dc65bdbf3b111c
+ * Derivation hash: c7b4b33f89c2268ef59d14f020e672eff5ebab64264554119159a3e38a62e88c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "6191272fb151d0a6df00adef9eb98e17224e322dcea55d5aa4dc65bdbf3b111c";
+const char bonered_derivation_hash[] = "c7b4b33f89c2268ef59d14f020e672eff5ebab64264554119159a3e38a62e88c";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 353868be9cce4aad027031ddf88dd1ff0474975e94df9f747ad24a9a47d96d2d
+ * Derivation hash: dbf25bd1404cc9dbef17bd8120ace0d13d9cb5eb30326f3fa53d8860fa315574
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "353868be9cce4aad027031ddf88dd1ff0474975e94df9f747ad24a9a47d96d2d";
+const char bonered_derivation_hash[] = "dbf25bd1404cc9dbef17bd8120ace0d13d9cb5eb30326f3fa53d8860fa315574";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

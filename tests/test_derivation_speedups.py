@@ -62,3 +62,23 @@ def test_mpmath_function_gives_lambdify_s_numbers_bit_for_bit():
             want, got = plain(pa, pb), kept(pa, pb)
             assert all(isinstance(v, mpmath.mpf) for v in got)
             assert [mpmath.mpf(v) for v in want] == [mpmath.mpf(v) for v in got]
+
+
+def test_pose_map_rates_are_the_derivatives():
+    """codegen.module.pose_map_rates (forward mode through the outputs' CSE program) gives
+    the derivatives sympy's diff gives, exactly (cancel of the difference), on a rational
+    map with shared factors like a Study map's (a rotation's half-angle tangents, the
+    translation through them), including outputs that do not depend on every coordinate."""
+    from bonered_alg.codegen.module import pose_map_rates
+
+    x, y, a, b = sp.symbols("x y alpha beta", real=True)
+    ta, tb = sp.tan(a / 2), sp.tan(b / 2)
+    n = (1 + ta**2) * (1 + tb**2)
+    outputs = [ta * tb / n, (x * (1 - ta**2) - 2 * y * ta) / n, (x + y * tb) / (1 + ta * tb),
+               sp.Integer(3), y**2 * tb]
+    pose = [x, y, a, b]
+    rates = pose_map_rates(outputs, pose)
+    for out, row in zip(outputs, rates):
+        assert len(row) == len(pose)
+        for p, r in zip(pose, row):
+            assert sp.cancel(sp.expand_trig(r - sp.diff(out, p))) == 0

@@ -101,6 +101,40 @@ def _abs(e: sp.Expr) -> sp.Expr:
     return sp.Integer(0) if e == 0 else sp.Abs(e, evaluate=False)
 
 
+def pose_map_rates(outputs: Sequence[sp.Expr], pose: Sequence[sp.Symbol]
+                   ) -> list[list[sp.Expr]]:
+    """``d outputs_i / d pose_m`` (rows per output), by forward-mode differentiation of the
+    outputs' common-subexpression program: each temporary's rates are the chain rule over
+    the arguments of its own (small) expression, written in the temporaries before it, and
+    every temporary is then put back in.  The same derivatives as ``diff`` of the whole
+    expression, but the shared factors of a rational pose map stay shared (tripod_planar's
+    Study map and its rates: 989 operations after CSE against 1,257, and 1.3 s of CSE
+    against 8.2 s; its Jacobian kernel 1,509 operations against 1,756)."""
+    pose = list(pose)
+    subs, reduced = sp.cse([sp.sympify(e) for e in outputs], symbols=sp.numbered_symbols("_w"),
+                           order="canonical")
+    zero = sp.Integer(0)
+    rates: dict[sp.Symbol, list[sp.Expr]] = {
+        x: [sp.Integer(int(x == y)) for y in pose] for x in pose}
+    value: dict[sp.Symbol, sp.Expr] = {}
+
+    def rates_of(e: sp.Expr) -> list[sp.Expr]:
+        out = [zero] * len(pose)
+        for a in sorted(e.free_symbols & set(rates), key=str):
+            partial = None
+            for m, r in enumerate(rates[a]):
+                if r != 0:
+                    if partial is None:
+                        partial = sp.diff(e, a).xreplace(value)
+                    out[m] += partial * r
+        return out
+
+    for sym, e in subs:
+        rates[sym] = rates_of(e)
+        value[sym] = e.xreplace(value)
+    return [rates_of(r) for r in reduced]
+
+
 # A leg line's frame (R, t and their rates) is built from its platform's Study point in the
 # pose coordinates.  Where that point is small (a Stewart platform's: 246 operations,
 # planar_tripod's tripod on MP1: 173) the rows are far shorter than the chain rule through
@@ -130,7 +164,7 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
     from ..kinematics import leg_lines
 
     study = list(sub)
-    ds = [[sp.diff(sub[s], x) for x in pose] for s in study]
+    ds = pose_map_rates([sub[s] for s in study], pose)
     frames: dict[tuple, leg_lines.PlatformFrame | None] = {}
     rows: dict[sp.Symbol, list[sp.Expr]] = {}
     pivots, scales = [], []
