@@ -509,6 +509,15 @@ def hand_written_benchmarks(n=1_000_000):
                 jac, ref = _tripod_planar_in_paper_coordinates(m, six, jac, ref)
                 row["jacobian_compared_on_poses"] = len(ref)
             row[f"{label}_max_rel_difference_jacobian"] = _max_rel(jac, ref)
+        # every working mode (numpy): ik_all against ik mode by mode, on a tenth of the poses
+        sub = poses[: len(poses) // 10]
+        t_modes, t_all = interleaved_medians(
+            [lambda m=m, p=sub, k=par: [m.ik(p, mode=j, limits=False, fast=False, **k)
+                                        for j in range(m.MODES)],
+             lambda m=m, p=sub, k=par: m.ik_all(p, limits=False, fast=False, **k)], 3)
+        row.update({"ik_all_modes": m.MODES,
+                    "numpy_ik_all_poses_per_s": len(sub) / t_all,
+                    "numpy_ik_all_speedup_vs_ik_mode_by_mode": t_modes / t_all})
         if name == "urrh_rcm":  # forward kinematics, every assembly mode
             q = ur.ik(poses, limits=False)[: n // 10]
             t_hand_fk = median_time(lambda q=q: hw.urrh_rcm_fk(q, ur.PARAMETERS), 3)

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 51cad0e3a595ade92eedf1501a239d5a37c497163993578b433653a96bfb3f53
+ * Derivation hash: af2abc8661cca3bd0d21c1b110e4f06462583b6f462e60d53d7d307730cf8f63
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "51cad0e3a595ade92eedf1501a239d5a37c497163993578b433653a96bfb3f53";
+const char bonered_derivation_hash[] = "af2abc8661cca3bd0d21c1b110e4f06462583b6f462e60d53d7d307730cf8f63";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 263847fbddda97d9b2d185cd8da0b19ffb70d5a43e298a43304d167105852d8e
+ * Derivation hash: e184a7ecf8015c22f1e2896309e18e0695afe16d38ad7b2ce0538a0e6fa5eadd
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "263847fbddda97d9b2d185cd8da0b19ffb70d5a43e298a43304d167105852d8e";
+const char bonered_derivation_hash[] = "e184a7ecf8015c22f1e2896309e18e0695afe16d38ad7b2ce0538a0e6fa5eadd";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b3465ad4fe6e4258bb3a2c3c19202ef40be6cb1c978128e67b8b9d61c99b229b
+ * Derivation hash: 0d6c96c805361f59a20010c9613b6cb4b6967d347ea691254a74f8254325eb05
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "b3465ad4fe6e4258bb3a2c3c19202ef40be6cb1c978128e67b8b9d61c99b229b";
+const char bonered_derivation_hash[] = "0d6c96c805361f59a20010c9613b6cb4b6967d347ea691254a74f8254325eb05";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

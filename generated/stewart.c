@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c7b4b33f89c2268ef59d14f020e672eff5ebab64264554119159a3e38a62e88c
+ * Derivation hash: 6e1fcbb23cdebda32f29edd36f1f8f8e08822f2a2f23bd192c2a046dbff79d39
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c7b4b33f89c2268ef59d14f020e672eff5ebab64264554119159a3e38a62e88c";
+const char bonered_derivation_hash[] = "6e1fcbb23cdebda32f29edd36f1f8f8e08822f2a2f23bd192c2a046dbff79d39";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

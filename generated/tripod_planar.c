@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 54dc535ff6f725c1a3f1b5c484f5ddbbb1aecca0703c4ad578f86c051bf02971
+ * Derivation hash: ab673b17869774ff45f0a34d84601f6f9c718cda864a71ddad1130806f680822
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "54dc535ff6f725c1a3f1b5c484f5ddbbb1aecca0703c4ad578f86c051bf02971";
+const char bonered_derivation_hash[] = "ab673b17869774ff45f0a34d84601f6f9c718cda864a71ddad1130806f680822";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dbf25bd1404cc9dbef17bd8120ace0d13d9cb5eb30326f3fa53d8860fa315574
+ * Derivation hash: 05f7856d241c74d4b79c0540f83764f8b8a5cd5412b0ff27537bbd3f2ac2a07a
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "dbf25bd1404cc9dbef17bd8120ace0d13d9cb5eb30326f3fa53d8860fa315574";
+const char bonered_derivation_hash[] = "05f7856d241c74d4b79c0540f83764f8b8a5cd5412b0ff27537bbd3f2ac2a07a";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -1,7 +1,8 @@
 """The lean back-substitution (the hot path of ``ik``, ``ik_and_status``, ``ik_and_jacobian``)
 against the detailed one (the per-step record behind ``ik_joint_status`` and ``ik_explain``):
 the same roots bit for bit, the same NaN and the same status codes, on synthetic steps that
-reach every code and on every generated mechanism's own steps."""
+reach every code and on every generated mechanism's own steps; and every mode at once
+(``backsubstitute_modes``, behind ``ik_all``) against the lean form mode by mode."""
 
 import importlib
 
@@ -10,7 +11,11 @@ import pytest
 
 from bonered_alg.registry import MECHANISMS
 from bonered_alg.runtime import status as st
-from bonered_alg.runtime.backsubstitution import backsubstitute_detailed, backsubstitute_lean
+from bonered_alg.runtime.backsubstitution import (
+    backsubstitute_detailed,
+    backsubstitute_lean,
+    backsubstitute_modes,
+)
 from bonered_alg.runtime.inputs import stacked
 
 
@@ -111,3 +116,39 @@ def test_generated_steps_as_the_detailed_form(name):
         _assert_same(backsubstitute_lean(*args, False), backsubstitute_detailed(*args, False))
         codes |= set(lean[1].tolist())
     assert st.OK in codes and len(codes) > 1  # valid poses and failures both
+
+
+def test_every_mode_at_once_as_mode_by_mode():
+    """backsubstitute_modes shares a step between the modes that agree on the earlier
+    roots; each mode's roots and NaN must be the lean form's, bit for bit, on inputs that
+    reach every failure, with leading axes and without."""
+    inputs = np.array([[2.0, 8.0], [0.125, 0.5], [-1.0, 4.0], [1.0, 0.0], [1.0, 1.0],
+                       [0.25, 0.25], [0.0, 1.0], [np.nan, 1.0], [1.0, -1.0]])
+    for x in (inputs, inputs[1]):
+        every = backsubstitute_modes(x, STEPS, (2, 0, 1), 3, range(4), [])
+        assert sorted(every) == [0, 1, 2, 3]
+        for mode, q in every.items():
+            lean = backsubstitute_lean(x, STEPS, (2, 0, 1), 3, mode, [])[0]
+            assert q.shape == lean.shape
+            assert np.array_equal(q, lean, equal_nan=True)
+
+
+@pytest.mark.parametrize("name", sorted(MECHANISMS))
+def test_ik_all_is_ik_mode_by_mode(name):
+    """ik_all (numpy: the Study map once, each step once per choice of the earlier roots)
+    gives each working mode's ik bit for bit, with the limits and without."""
+    m = importlib.import_module(f"bonered_alg.generated.{name}")
+    rng = np.random.default_rng(8)
+    home = np.array(m.HOME) if getattr(m, "HOME", None) else np.zeros(len(m.POSE))
+    scale = np.array([40.0 if u == "mm" else 0.4 for u in m.POSE_UNITS])
+    poses = home + rng.uniform(-1.0, 1.0, (500, len(m.POSE))) * scale
+    poses[::37, 1] = np.nan
+    for limits in (False, True):
+        every = m.ik_all(poses, limits=limits, fast=False)
+        assert every.shape == (500, m.MODES, len(m.JOINTS))
+        for mode in range(m.MODES):
+            one = m.ik(poses, mode=mode, limits=limits, fast=False)
+            assert np.array_equal(every[:, mode], one, equal_nan=True)
+        assert np.isfinite(every).any()  # some poses are reached
+    single = m.ik_all(poses[0], fast=False)
+    assert np.array_equal(single, every[0], equal_nan=True)

@@ -73,35 +73,7 @@ def _roots(cols, steps, indices, out, mode, par, records=None):
     for (degree, kern, bit), index in zip(steps, indices):
         a, b, c = kern(*cols, *solved, *par)
         dest = out[index, ...]
-        if degree == 1:
-            numpy.divide(c, b, out=dest)
-            numpy.negative(dest, out=dest)  # -(c/b) is (-c)/b: negation is exact
-            record = ("linear", b)
-        elif numpy.ndim(b) == 0 and b == 0.0:
-            disc = 0.0 - 4.0 * a * c
-            ssq = numpy.sqrt(disc)  # NaN where negative: no real root
-            if (mode >> bit) & 1:
-                ssq = -ssq  # (a new value: a single pose's sqrt is a numpy scalar)
-            numpy.divide(ssq, 2.0 * a, out=dest)
-            record = ("pure", disc)
-        else:
-            bb = b * b
-            disc = bb - 4.0 * a * c
-            no_real = disc < -DISC_RTOL * bb
-            # sqrt(max(disc, 0)), NaN where no real root: there max(disc, 0) is 0, and
-            # subtracting True makes it -1 (numpy.where and masked copies cost several
-            # arithmetic passes each)
-            ssq = numpy.maximum(disc, 0.0) - no_real
-            # s = |B| + sqrt(disc) never cancels: the root with +sqrt is s / 2A where
-            # B <= 0 and 2C / -s where B > 0; the one with -sqrt, -s / 2A where B >= 0 and
-            # 2C / s where B < 0 -- the detailed form's (+-sqrt - B) / 2A and
-            # 2C / (-B -+ sqrt), the same numbers (a zero root may differ in its sign)
-            s = numpy.abs(b) + numpy.sqrt(ssq)
-            if (mode >> bit) & 1:
-                dest[...] = numpy.where(b < 0.0, (2.0 * c) / s, numpy.negative(s) / (2.0 * a))
-            else:
-                dest[...] = numpy.where(b > 0.0, (2.0 * c) / numpy.negative(s), s / (2.0 * a))
-            record = ("quadratic", disc, bb)
+        record = _step_root(degree, a, b, c, degree == 2 and (mode >> bit) & 1, dest)
         finite = numpy.isfinite(dest)
         if good is None:
             good = finite
@@ -111,6 +83,74 @@ def _roots(cols, steps, indices, out, mode, par, records=None):
         if records is not None:
             records.append(record)
     return good
+
+
+def _step_root(degree, a, b, c, minus, dest):
+    """The root of one step written into ``dest`` (the root with ``-sqrt`` where ``minus``);
+    returns the step's record for the status (:func:`_roots`)."""
+    if degree == 1:
+        numpy.divide(c, b, out=dest)
+        numpy.negative(dest, out=dest)  # -(c/b) is (-c)/b: negation is exact
+        return ("linear", b)
+    if numpy.ndim(b) == 0 and b == 0.0:
+        disc = 0.0 - 4.0 * a * c
+        ssq = numpy.sqrt(disc)  # NaN where negative: no real root
+        if minus:
+            ssq = -ssq  # (a new value: a single pose's sqrt is a numpy scalar)
+        numpy.divide(ssq, 2.0 * a, out=dest)
+        return ("pure", disc)
+    bb = b * b
+    disc = bb - 4.0 * a * c
+    no_real = disc < -DISC_RTOL * bb
+    # sqrt(max(disc, 0)), NaN where no real root: there max(disc, 0) is 0, and subtracting
+    # True makes it -1 (numpy.where and masked copies cost several arithmetic passes each)
+    ssq = numpy.maximum(disc, 0.0) - no_real
+    # s = |B| + sqrt(disc) never cancels: the root with +sqrt is s / 2A where B <= 0 and
+    # 2C / -s where B > 0; the one with -sqrt, -s / 2A where B >= 0 and 2C / s where B < 0
+    # -- the detailed form's (+-sqrt - B) / 2A and 2C / (-B -+ sqrt), the same numbers (a
+    # zero root may differ in its sign)
+    s = numpy.abs(b) + numpy.sqrt(ssq)
+    if minus:
+        dest[...] = numpy.where(b < 0.0, (2.0 * c) / s, numpy.negative(s) / (2.0 * a))
+    else:
+        dest[...] = numpy.where(b > 0.0, (2.0 * c) / numpy.negative(s), s / (2.0 * a))
+    return ("quadratic", disc, bb)
+
+
+def backsubstitute_modes(inputs, steps, indices, n_out, modes, par):
+    """``backsubstitute_lean(inputs, ..., mode, par)[0]`` of every mode in ``modes``, the
+    same numbers, with each step solved once per choice of the roots before it: a step's
+    coefficients and both its roots are shared by every mode that agrees on the earlier
+    quadratic steps (a Stewart platform's 64 modes: 63 evaluations of its six step kernels
+    instead of 384, and the Study map once).  Returns ``{mode: q (..., n_out)}``."""
+    shape = inputs.shape[:-1]
+    cols = contiguous_columns(inputs)
+    # prefix of mode bits -> (roots so far, all finite so far)
+    level: dict[int, tuple[list, object]] = {0: ([], None)}
+    with numpy.errstate(all="ignore"):
+        for degree, kern, bit in steps:
+            grown: dict[int, tuple[list, object]] = {}
+            for prefix, (solved, good) in level.items():
+                a, b, c = kern(*cols, *solved, *par)
+                signs = (0, 1) if degree == 2 else (0,)
+                for minus in signs:
+                    dest = numpy.empty(shape)
+                    _step_root(degree, a, b, c, minus, dest)
+                    finite = numpy.isfinite(dest)
+                    key = prefix | (minus << bit) if degree == 2 else prefix
+                    grown[key] = (solved + [dest], finite if good is None else good & finite)
+            level = grown
+        mask = sum(1 << bit for degree, _, bit in steps if degree == 2)
+        out = {}
+        for mode in modes:
+            roots, good = level[mode & mask]
+            q = numpy.empty((n_out,) + shape)
+            for index, root in zip(indices, roots):
+                q[index, ...] = root
+            if good is not None and not good.all():
+                q[:, ~good] = numpy.nan
+            out[mode] = numpy.moveaxis(q, 0, -1)
+    return out
 
 
 def _lean_status(inputs, shape, failed, roots, records):

@@ -15,7 +15,7 @@ import numpy
 from . import fk as fk_solver
 from . import inputs as check
 from . import statics
-from .backsubstitution import backsubstitute
+from .backsubstitution import backsubstitute, backsubstitute_modes
 from .inputs import columns, contiguous_columns, stacked
 from .status import (
     DET_RTOL,
@@ -228,24 +228,49 @@ class Model:
         """``_solve`` with ``q`` a view whose columns are contiguous (the kernels take one
         column per argument: numpy is about 1.7 times slower on strided ones); ``shared``:
         the poses' :meth:`pose_values` where already computed."""
-        shape = pose.shape[:-1]
-        with numpy.errstate(all="ignore"):
-            if shared is None:
+        if shared is None:
+            with numpy.errstate(all="ignore"):
                 shared = self.pose_values(pose, par)
-            values = self.study_values(pose, par, shared)
-        study = numpy.empty((len(self.study_pose),) + shape)
-        for i, v in enumerate(values):
-            study[i] = v
-        study = numpy.moveaxis(study, 0, -1)
+        study = self._study_columns(pose, par, shared)
         q, status = backsubstitute(study, self.steps, self.solve_index, len(self.joints), mode,
                                    par, with_status)
         if with_status and not numpy.isfinite(pose).all():
             status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
+        return self._checked(pose, study, q, status, par, with_status, limits, shared)
+
+    def _study_columns(self, pose, par, shared):
+        """The poses' Study coordinates (..., len(STUDY_POSE)), each a contiguous column."""
+        shape = pose.shape[:-1]
+        with numpy.errstate(all="ignore"):
+            values = self.study_values(pose, par, shared)
+        study = numpy.empty((len(self.study_pose),) + shape)
+        for i, v in enumerate(values):
+            study[i] = v
+        return numpy.moveaxis(study, 0, -1)
+
+    def _checked(self, pose, study, q, status, par, with_status, limits, shared):
+        """``q`` and the status after the pivot check and, with ``limits``, the limits."""
         if self.pivots is not None:
             q, status = self._pivot_check(study, q, status, par, with_status)
         if limits and self.limits:
             q, status = self._limit_check(pose, q, status, par, with_status, shared)
         return q, status
+
+    def _solve_all(self, pose, par, limits):
+        """``q`` of every working mode (k, MODES, len(JOINTS)) in the user's units: the
+        numbers of :meth:`_solve` mode by mode, with the Study map evaluated once and each
+        IK step once per choice of the earlier roots (:func:`backsubstitute_modes`)."""
+        with numpy.errstate(all="ignore"):
+            shared = self.pose_values(pose, par)
+        study = self._study_columns(pose, par, shared)
+        by_mode = backsubstitute_modes(study, self.steps, self.solve_index, len(self.joints),
+                                       range(self.modes), par)
+        out = numpy.empty(pose.shape[:-1] + (self.modes, len(self.joints)))
+        for mode, q in by_mode.items():
+            q, _ = self._checked(pose, study, q, None, par, False, limits, shared)
+            self.publish(q)
+            out[..., mode, :] = q
+        return out
 
     def _limit_check(self, pose, q, status, par, with_status, shared=None):
         shape = pose.shape[:-1]
@@ -306,8 +331,10 @@ class Model:
 
     def ik_all(self, pose, limits=True, params=None, fast=None):
         pose, _, par, limits = self._ik_args("ik_all", pose, 0, limits, params)
-        return numpy.stack([self.solve(pose, m, par, False, limits, fast, "ik_all", True)[0]
-                            for m in range(self.modes)], axis=-2)
+        if self._fast_path("ik_all", fast, par) is not None:
+            return numpy.stack([self.solve(pose, m, par, False, limits, fast, "ik_all",
+                                           True)[0] for m in range(self.modes)], axis=-2)
+        return _chunked(pose, par, lambda p, pr: (self._solve_all(p, pr, limits),))[0]
 
     # ------------------------------------------------------------ why a pose fails
     def _joint_report(self, pose, mode, par, limits):
