@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: af2abc8661cca3bd0d21c1b110e4f06462583b6f462e60d53d7d307730cf8f63
+ * Derivation hash: 97947b1ec92671db6de6b225029593b56417705651c43969e053327fcba0114f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "af2abc8661cca3bd0d21c1b110e4f06462583b6f462e60d53d7d307730cf8f63";
+const char bonered_derivation_hash[] = "97947b1ec92671db6de6b225029593b56417705651c43969e053327fcba0114f";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e184a7ecf8015c22f1e2896309e18e0695afe16d38ad7b2ce0538a0e6fa5eadd
+ * Derivation hash: 2b85bb44793fecfda741c8d5f10e6a9437add132a0dc6553e9509c018502b8d6
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "e184a7ecf8015c22f1e2896309e18e0695afe16d38ad7b2ce0538a0e6fa5eadd";
+const char bonered_derivation_hash[] = "2b85bb44793fecfda741c8d5f10e6a9437add132a0dc6553e9509c018502b8d6";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0d6c96c805361f59a20010c9613b6cb4b6967d347ea691254a74f8254325eb05
+ * Derivation hash: 116dae76256752948b087cb488aa19dddee57e9fbe341542061fc763122aeb1d
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "0d6c96c805361f59a20010c9613b6cb4b6967d347ea691254a74f8254325eb05";
+const char bonered_derivation_hash[] = "116dae76256752948b087cb488aa19dddee57e9fbe341542061fc763122aeb1d";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

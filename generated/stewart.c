@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6e1fcbb23cdebda32f29edd36f1f8f8e08822f2a2f23bd192c2a046dbff79d39
+ * Derivation hash: 510e4dcd68af8ba87df444d3a75a7ec5674ed922d876b20cfa1657b6cde99312
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "6e1fcbb23cdebda32f29edd36f1f8f8e08822f2a2f23bd192c2a046dbff79d39";
+const char bonered_derivation_hash[] = "510e4dcd68af8ba87df444d3a75a7ec5674ed922d876b20cfa1657b6cde99312";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ab673b17869774ff45f0a34d84601f6f9c718cda864a71ddad1130806f680822
+ * Derivation hash: 245c7537b19026c3a7cb84bd72dba1a6a537984c08d4b7044407971b71259aec
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "ab673b17869774ff45f0a34d84601f6f9c718cda864a71ddad1130806f680822";
+const char bonered_derivation_hash[] = "245c7537b19026c3a7cb84bd72dba1a6a537984c08d4b7044407971b71259aec";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 05f7856d241c74d4b79c0540f83764f8b8a5cd5412b0ff27537bbd3f2ac2a07a
+ * Derivation hash: 0874050ea2bd1951df139f3e8797725bc279f1f937125c6e608d15f2bdb7c358
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "05f7856d241c74d4b79c0540f83764f8b8a5cd5412b0ff27537bbd3f2ac2a07a";
+const char bonered_derivation_hash[] = "0874050ea2bd1951df139f3e8797725bc279f1f937125c6e608d15f2bdb7c358";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -125,7 +125,7 @@ def test_every_mode_at_once_as_mode_by_mode():
     inputs = np.array([[2.0, 8.0], [0.125, 0.5], [-1.0, 4.0], [1.0, 0.0], [1.0, 1.0],
                        [0.25, 0.25], [0.0, 1.0], [np.nan, 1.0], [1.0, -1.0]])
     for x in (inputs, inputs[1]):
-        every = backsubstitute_modes(x, STEPS, (2, 0, 1), 3, range(4), [])
+        every = dict(backsubstitute_modes(x, STEPS, (2, 0, 1), 3, range(4), []))
         assert sorted(every) == [0, 1, 2, 3]
         for mode, q in every.items():
             lean = backsubstitute_lean(x, STEPS, (2, 0, 1), 3, mode, [])[0]

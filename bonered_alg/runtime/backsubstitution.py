@@ -122,7 +122,9 @@ def backsubstitute_modes(inputs, steps, indices, n_out, modes, par):
     same numbers, with each step solved once per choice of the roots before it: a step's
     coefficients and both its roots are shared by every mode that agrees on the earlier
     quadratic steps (a Stewart platform's 64 modes: 63 evaluations of its six step kernels
-    instead of 384, and the Study map once).  Returns ``{mode: q (..., n_out)}``."""
+    instead of 384, and the Study map once).  Yields ``(mode, q (..., n_out))`` in the
+    order of ``modes``, each ``q`` assembled when it is asked for (the roots are what is
+    kept: a chunk of a Stewart platform's poses holds 126 root arrays, not 64 results)."""
     shape = inputs.shape[:-1]
     cols = contiguous_columns(inputs)
     # prefix of mode bits -> (roots so far, all finite so far)
@@ -140,17 +142,15 @@ def backsubstitute_modes(inputs, steps, indices, n_out, modes, par):
                     key = prefix | (minus << bit) if degree == 2 else prefix
                     grown[key] = (solved + [dest], finite if good is None else good & finite)
             level = grown
-        mask = sum(1 << bit for degree, _, bit in steps if degree == 2)
-        out = {}
-        for mode in modes:
-            roots, good = level[mode & mask]
-            q = numpy.empty((n_out,) + shape)
-            for index, root in zip(indices, roots):
-                q[index, ...] = root
-            if good is not None and not good.all():
-                q[:, ~good] = numpy.nan
-            out[mode] = numpy.moveaxis(q, 0, -1)
-    return out
+    mask = sum(1 << bit for degree, _, bit in steps if degree == 2)
+    for mode in modes:
+        roots, good = level[mode & mask]
+        q = numpy.empty((n_out,) + shape)
+        for index, root in zip(indices, roots):
+            q[index, ...] = root
+        if good is not None and not good.all():
+            q[:, ~good] = numpy.nan
+        yield mode, numpy.moveaxis(q, 0, -1)
 
 
 def _lean_status(inputs, shape, failed, roots, records):

@@ -266,7 +266,7 @@ class Model:
         by_mode = backsubstitute_modes(study, self.steps, self.solve_index, len(self.joints),
                                        range(self.modes), par)
         out = numpy.empty(pose.shape[:-1] + (self.modes, len(self.joints)))
-        for mode, q in by_mode.items():
+        for mode, q in by_mode:
             q, _ = self._checked(pose, study, q, None, par, False, limits, shared)
             self.publish(q)
             out[..., mode, :] = q
