@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 97947b1ec92671db6de6b225029593b56417705651c43969e053327fcba0114f
+ * Derivation hash: c555a0497886483e01bfbad27f5db54b75a4e844bc918cc28a657e4f16c2712c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "97947b1ec92671db6de6b225029593b56417705651c43969e053327fcba0114f";
+const char bonered_derivation_hash[] = "c555a0497886483e01bfbad27f5db54b75a4e844bc918cc28a657e4f16c2712c";
 int bonered_abi(void) { return 3; }
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */

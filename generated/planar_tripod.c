@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2b85bb44793fecfda741c8d5f10e6a9437add132a0dc6553e9509c018502b8d6
+ * Derivation hash: c5d1709b13a5ad807d7dcc3f4f0210f35834491aa5eca2d6c221e99e49f4cca5
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "2b85bb44793fecfda741c8d5f10e6a9437add132a0dc6553e9509c018502b8d6";
+const char bonered_derivation_hash[] = "c5d1709b13a5ad807d7dcc3f4f0210f35834491aa5eca2d6c221e99e49f4cca5";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

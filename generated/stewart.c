@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 510e4dcd68af8ba87df444d3a75a7ec5674ed922d876b20cfa1657b6cde99312
+ * Derivation hash: 06b95e5ea41ead9325a313699d743b8ada6917da3b93eaff08d2fcb204e1b30d
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "510e4dcd68af8ba87df444d3a75a7ec5674ed922d876b20cfa1657b6cde99312";
+const char bonered_derivation_hash[] = "06b95e5ea41ead9325a313699d743b8ada6917da3b93eaff08d2fcb204e1b30d";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

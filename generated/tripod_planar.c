@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 245c7537b19026c3a7cb84bd72dba1a6a537984c08d4b7044407971b71259aec
+ * Derivation hash: 99e3b4c74b7878c79934ac5ae4210c1e262a0f9939918014298ff8d75a67d40c
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "245c7537b19026c3a7cb84bd72dba1a6a537984c08d4b7044407971b71259aec";
+const char bonered_derivation_hash[] = "99e3b4c74b7878c79934ac5ae4210c1e262a0f9939918014298ff8d75a67d40c";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -3,11 +3,11 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0874050ea2bd1951df139f3e8797725bc279f1f937125c6e608d15f2bdb7c358
+ * Derivation hash: c856b8f2bc21bd93be4c399d152db005c8936c5893dd341f79a1eb2c283189d9
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "0874050ea2bd1951df139f3e8797725bc279f1f937125c6e608d15f2bdb7c358";
+const char bonered_derivation_hash[] = "c856b8f2bc21bd93be4c399d152db005c8936c5893dd341f79a1eb2c283189d9";
 int bonered_abi(void) { return 3; }
 
 /* Elementary functions of the pose that several stages take. */

@@ -256,21 +256,20 @@ class Model:
             q, status = self._limit_check(pose, q, status, par, with_status, shared)
         return q, status
 
-    def _solve_all(self, pose, par, limits):
-        """``q`` of every working mode (k, MODES, len(JOINTS)) in the user's units: the
-        numbers of :meth:`_solve` mode by mode, with the Study map evaluated once and each
-        IK step once per choice of the earlier roots (:func:`backsubstitute_modes`)."""
+    def _solve_all(self, pose, par, limits, out):
+        """``q`` of every working mode written into ``out`` (k, MODES, len(JOINTS)) in the
+        user's units: the numbers of :meth:`_solve` mode by mode, with the Study map
+        evaluated once and each IK step once per choice of the earlier roots
+        (:func:`backsubstitute_modes`)."""
         with numpy.errstate(all="ignore"):
             shared = self.pose_values(pose, par)
         study = self._study_columns(pose, par, shared)
         by_mode = backsubstitute_modes(study, self.steps, self.solve_index, len(self.joints),
                                        range(self.modes), par)
-        out = numpy.empty(pose.shape[:-1] + (self.modes, len(self.joints)))
         for mode, q in by_mode:
             q, _ = self._checked(pose, study, q, None, par, False, limits, shared)
             self.publish(q)
             out[..., mode, :] = q
-        return out
 
     def _limit_check(self, pose, q, status, par, with_status, shared=None):
         shape = pose.shape[:-1]
@@ -334,7 +333,8 @@ class Model:
         if self._fast_path("ik_all", fast, par) is not None:
             return numpy.stack([self.solve(pose, m, par, False, limits, fast, "ik_all",
                                            True)[0] for m in range(self.modes)], axis=-2)
-        return _chunked(pose, par, lambda p, pr: (self._solve_all(p, pr, limits),))[0]
+        return _chunked_into(pose, par, (((self.modes, len(self.joints)), float),),
+                             lambda p, pr, out: self._solve_all(p, pr, limits, out))[0]
 
     # ------------------------------------------------------------ why a pose fails
     def _joint_report(self, pose, mode, par, limits):
