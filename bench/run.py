@@ -509,15 +509,17 @@ def hand_written_benchmarks(n=1_000_000):
                 jac, ref = _tripod_planar_in_paper_coordinates(m, six, jac, ref)
                 row["jacobian_compared_on_poses"] = len(ref)
             row[f"{label}_max_rel_difference_jacobian"] = _max_rel(jac, ref)
-        # every working mode (numpy): ik_all against ik mode by mode, on a tenth of the poses
+        # every working mode: ik_all against ik mode by mode, on a tenth of the poses, in
+        # numpy and on the compiled path
         sub = poses[: len(poses) // 10]
-        t_modes, t_all = interleaved_medians(
-            [lambda m=m, p=sub, k=par: [m.ik(p, mode=j, limits=False, fast=False, **k)
-                                        for j in range(m.MODES)],
-             lambda m=m, p=sub, k=par: m.ik_all(p, limits=False, fast=False, **k)], 3)
-        row.update({"ik_all_modes": m.MODES,
-                    "numpy_ik_all_poses_per_s": len(sub) / t_all,
-                    "numpy_ik_all_speedup_vs_ik_mode_by_mode": t_modes / t_all})
+        row["ik_all_modes"] = m.MODES
+        for label, fast in (("numpy", False), ("compiled", True)):
+            t_modes, t_all = interleaved_medians(
+                [lambda m=m, p=sub, k=par, f=fast: [m.ik(p, mode=j, limits=False, fast=f, **k)
+                                                    for j in range(m.MODES)],
+                 lambda m=m, p=sub, k=par, f=fast: m.ik_all(p, limits=False, fast=f, **k)], 3)
+            row.update({f"{label}_ik_all_poses_per_s": len(sub) / t_all,
+                        f"{label}_ik_all_speedup_vs_ik_mode_by_mode": t_modes / t_all})
         if name == "urrh_rcm":  # forward kinematics, every assembly mode
             q = ur.ik(poses, limits=False)[: n // 10]
             t_hand_fk = median_time(lambda q=q: hw.urrh_rcm_fk(q, ur.PARAMETERS), 3)
@@ -663,6 +665,55 @@ def platform_ideal(engine, budget_s):
     return [Elimination().derive(mech, closure, leg, algebra) for leg in closure.legs]
 
 
+FAST_PATH_PROBE = """
+import sys, time
+t0 = time.perf_counter()
+import importlib
+import numpy
+t1 = time.perf_counter()
+m = importlib.import_module("bonered_alg.generated." + sys.argv[1])
+t2 = time.perf_counter()
+pose = numpy.array([getattr(m, "HOME", None) or [0.0] * len(m.POSE)])
+m.ik(pose, limits=False, fast=True)  # fast=True: an error where the fast path is missing
+t3 = time.perf_counter()
+print(t1 - t0, t2 - t1, t3 - t2)
+"""
+
+
+def fast_path_build_benchmarks(repeat=3):
+    """Issue 15: the compiled fast path costs at most 5 s on the first call after a fresh
+    install and 0.3 s per later import.  Each mechanism in fresh processes: the import of
+    numpy, of its generated module, then its first ``ik(..., fast=True)``, with an empty
+    library cache (the first call builds the library) and with the cache that build left
+    (a later import: the first call only loads it); medians of ``repeat`` runs of each.
+    ``first_call_after_install_s`` is the whole process's cost after a fresh install
+    (imports included), ``fast_path_later_s`` what the fast path adds to a later import."""
+    import tempfile
+
+    from bonered_alg.registry import REGISTRY
+    out = {}
+    for name in REGISTRY:
+        cold, warm = [], []
+        for _ in range(repeat):
+            with tempfile.TemporaryDirectory() as cache:
+                env = {**os.environ, "BONERED_ALG_CACHE": cache}
+                for into in (cold, warm):
+                    run = subprocess.run([sys.executable, "-c", FAST_PATH_PROBE, name],
+                                         capture_output=True, text=True, env=env, check=True,
+                                         cwd=ROOT)
+                    into.append([float(v) for v in run.stdout.split()])
+        out[name] = {
+            "first_call_after_install_s": statistics.median(sum(r) for r in cold),
+            "first_call_build_s": statistics.median(r[2] for r in cold),
+            "later_import_and_first_call_s": statistics.median(sum(r) for r in warm),
+            "later_module_import_s": statistics.median(r[1] for r in warm),
+            "fast_path_later_s": statistics.median(r[2] for r in warm),
+        }
+    out["compiler_flags"] = " ".join((*compiled.FLAGS, *compiled.isa_flags()))
+    print(out, flush=True)
+    return out
+
+
 def _cpu_model() -> str:
     try:
         for line in Path("/proc/cpuinfo").read_text().splitlines():
@@ -679,7 +730,7 @@ def main():
     ap.add_argument("--poses", type=int, default=1_000_000)
     ap.add_argument("--sympy-budget", type=float, default=60.0)
     ap.add_argument("--only", choices=["workspace", "pro_hep_lct_tool", "hand_written",
-                                       "membership", "derive"],
+                                       "membership", "derive", "fast_path_build"],
                     default=None,
                     help="re-run one section and merge it into the existing --out file")
     args = ap.parse_args()
@@ -689,7 +740,8 @@ def main():
                               "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks,
                               "hand_written": hand_written_benchmarks,
                               "membership": membership_benchmarks,
-                              "derive": derive_benchmarks}[args.only]()
+                              "derive": derive_benchmarks,
+                              "fast_path_build": fast_path_build_benchmarks}[args.only]()
         args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
         print(f"wrote {args.out} ({args.only} section)")
         return
@@ -708,6 +760,7 @@ def main():
         "workspace": workspace_benchmarks(),
         "hand_written": hand_written_benchmarks(),
         "membership": membership_benchmarks(),
+        "fast_path_build": fast_path_build_benchmarks(),
         "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks(sympy_budget=args.sympy_budget),
     }
     args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")

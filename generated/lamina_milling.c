@@ -3,12 +3,14 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c555a0497886483e01bfbad27f5db54b75a4e844bc918cc28a657e4f16c2712c
+ * Derivation hash: 0c4e402018328acefc5488e3dc85dbac0ed1c073a66eef57186d4e81ec12a447
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c555a0497886483e01bfbad27f5db54b75a4e844bc918cc28a657e4f16c2712c";
+#if !defined(BF_PART) || BF_PART == 1
+const char bonered_derivation_hash[] = "0c4e402018328acefc5488e3dc85dbac0ed1c073a66eef57186d4e81ec12a447";
 int bonered_abi(void) { return 3; }
+#endif
 
 /* Study coordinates STUDY_POSE of the pose (POSE). */
 BF_INLINE void _study(double v_x, double v_y, double v_z, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
@@ -107,14 +109,91 @@ BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1,
     out[14] = 0.0;
 }
 
+BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double (*restrict Q)[BF_BLOCK], const double *restrict par, int *restrict ST, double *restrict jac_out, int stream, int public);
+
+#if !defined(BF_PART) || BF_PART == 2
+BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double (*restrict Q)[BF_BLOCK], const double *restrict par, int *restrict ST, double *restrict jac_out, int stream, int public)
+{
+    double J[9][BF_BLOCK];
+    for (int i = 0; i < m; i++) {
+        double v[15];
+        _jac(P[0][i], P[1][i], P[2][i], Q[0][i], Q[1][i], Q[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], v);
+        int status = ST[i];
+        int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[3]) | !(fabs(v[1]) > BF_DET_RTOL * v[4]) | !(fabs(v[2]) > BF_DET_RTOL * v[5])) | (status == BF_ON_BOUNDARY);
+        J[0][i] = singular ? NAN : v[6];
+        J[1][i] = singular ? NAN : v[7];
+        J[2][i] = singular ? NAN : v[8];
+        J[3][i] = singular ? NAN : v[9];
+        J[4][i] = singular ? NAN : v[10];
+        J[5][i] = singular ? NAN : v[11];
+        J[6][i] = singular ? NAN : v[12];
+        J[7][i] = singular ? NAN : v[13];
+        J[8][i] = singular ? NAN : v[14];
+        ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
+    }
+    if (public) {  /* the angle joints' rows times dq/dt = 2 / (1 + t^2) */
+        for (int i = 0; i < m; i++) {
+            double d1 = 2.0 / (1.0 + Q[1][i] * Q[1][i]);
+            J[3][i] *= d1;
+            J[4][i] *= d1;
+            J[5][i] *= d1;
+            double d2 = 2.0 / (1.0 + Q[2][i] * Q[2][i]);
+            J[6][i] *= d2;
+            J[7][i] *= d2;
+            J[8][i] *= d2;
+        }
+    }
+    (void)stream;
+    for (int i = 0; i < m; i++)
+        for (int k = 0; k < 9; k++)
+            jac_out[i * 9 + k] = J[k][i];
+}
+#endif
+
+#if !defined(BF_PART) || BF_PART == 1
+static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+                       const double *const *restrict R, const int *restrict ST_in,
+                       const int *restrict FL_in, const double *restrict par,
+                       int limits, double *restrict q_out, long q_stride,
+                       signed char *restrict status_out, double *restrict jac_out,
+                       int stream, int public)
+{
+    double Q[3][BF_BLOCK];
+    int ST[BF_BLOCK];
+    (void)S;
+    for (int i = 0; i < m; i++) {
+        int failed = FL_in[i];
+        Q[0][i] = failed ? NAN : R[0][i];
+        Q[1][i] = failed ? NAN : R[1][i];
+        Q[2][i] = failed ? NAN : R[2][i];
+        ST[i] = BF_SET(ST_in[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i])), BF_INVALID_INPUT);
+    }
+    (void)limits;
+    if (jac_out)
+        bf_jacobian_block(m, P, Q, par, ST, jac_out, stream, public);
+    if (public) {  /* the angle joints as angles, q = 2 atan(t) */
+        for (int i = 0; i < m; i++) {
+            Q[1][i] = 2.0 * atan(Q[1][i]);
+            Q[2][i] = 2.0 * atan(Q[2][i]);
+        }
+    }
+    for (int i = 0; i < m; i++) {
+        q_out[i * q_stride + 0] = Q[0][i];
+        q_out[i * q_stride + 1] = Q[1][i];
+        q_out[i * q_stride + 2] = Q[2][i];
+    }
+    if (status_out)
+        for (int i = 0; i < m; i++)
+            status_out[i] = (signed char)ST[i];
+}
+
 static void solve_block(int m, const double *restrict pose, const double *restrict par,
                         int mode, int limits, double *restrict q_out,
                         signed char *restrict status_out, double *restrict jac_out,
                         int stream, int public)
 {
-    double P[3][BF_BLOCK], S[3][BF_BLOCK], R[3][BF_BLOCK], Q[3][BF_BLOCK];
+    double P[3][BF_BLOCK], S[3][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
-    (void)mode;
     for (int i = 0; i < m; i++) {
         P[0][i] = pose[i * 3 + 0];
         P[1][i] = pose[i * 3 + 1];
@@ -129,6 +208,8 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2])));
         FL[i] = 0;
     }
+    double R[3][BF_BLOCK];
+    (void)mode;
     for (int i = 0; i < m; i++) {
         double c[3];
         int status = ST[i], failed = FL[i];
@@ -153,60 +234,113 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         ST[i] = status;
         FL[i] = failed;
     }
+    const double *roots[3] = {R[0], R[1], R[2]};
+    block_tail(m, P, S, roots, ST, FL, par, limits, q_out, 3, status_out,
+               jac_out, stream, public);
+}
+
+static void solve_all_block(int m, const double *restrict pose,
+                            const double *restrict par, int limits,
+                            double *restrict q_out, int public)
+{
+    double P[3][BF_BLOCK], S[3][BF_BLOCK];
+    int ST[BF_BLOCK], FL[BF_BLOCK];
     for (int i = 0; i < m; i++) {
-        int failed = FL[i];
-        Q[0][i] = failed ? NAN : R[0][i];
-        Q[1][i] = failed ? NAN : R[1][i];
-        Q[2][i] = failed ? NAN : R[2][i];
-        ST[i] = BF_SET(ST[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i])), BF_INVALID_INPUT);
-    }
-    (void)limits;
-    if (jac_out) {
-        double J[9][BF_BLOCK];
-        for (int i = 0; i < m; i++) {
-            double v[15];
-            _jac(P[0][i], P[1][i], P[2][i], Q[0][i], Q[1][i], Q[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], v);
-            int status = ST[i];
-            int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[3]) | !(fabs(v[1]) > BF_DET_RTOL * v[4]) | !(fabs(v[2]) > BF_DET_RTOL * v[5])) | (status == BF_ON_BOUNDARY);
-            J[0][i] = singular ? NAN : v[6];
-            J[1][i] = singular ? NAN : v[7];
-            J[2][i] = singular ? NAN : v[8];
-            J[3][i] = singular ? NAN : v[9];
-            J[4][i] = singular ? NAN : v[10];
-            J[5][i] = singular ? NAN : v[11];
-            J[6][i] = singular ? NAN : v[12];
-            J[7][i] = singular ? NAN : v[13];
-            J[8][i] = singular ? NAN : v[14];
-            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
-        }
-        if (public) {  /* the angle joints' rows times dq/dt = 2 / (1 + t^2) */
-            for (int i = 0; i < m; i++) {
-                double d1 = 2.0 / (1.0 + Q[1][i] * Q[1][i]);
-                J[3][i] *= d1;
-                J[4][i] *= d1;
-                J[5][i] *= d1;
-                double d2 = 2.0 / (1.0 + Q[2][i] * Q[2][i]);
-                J[6][i] *= d2;
-                J[7][i] *= d2;
-                J[8][i] *= d2;
-            }
-        }
-        (void)stream;
-        for (int i = 0; i < m; i++)
-            for (int k = 0; k < 9; k++)
-                jac_out[i * 9 + k] = J[k][i];
-    }
-    if (public) {  /* the angle joints as angles, q = 2 atan(t) */
-        for (int i = 0; i < m; i++) {
-            Q[1][i] = 2.0 * atan(Q[1][i]);
-            Q[2][i] = 2.0 * atan(Q[2][i]);
-        }
+        P[0][i] = pose[i * 3 + 0];
+        P[1][i] = pose[i * 3 + 1];
+        P[2][i] = pose[i * 3 + 2];
     }
     for (int i = 0; i < m; i++) {
-        q_out[i * 3 + 0] = Q[0][i];
-        q_out[i * 3 + 1] = Q[1][i];
-        q_out[i * 3 + 2] = Q[2][i];
-        status_out[i] = (signed char)ST[i];
+        double s[3];
+        _study(P[0][i], P[1][i], P[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], s);
+        S[0][i] = s[0];
+        S[1][i] = s[1];
+        S[2][i] = s[2];
+        ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2])));
+        FL[i] = 0;
+    }
+    double T0[2][BF_BLOCK];
+    int TS0[2][BF_BLOCK], TF0[2][BF_BLOCK];
+    double T1[4][BF_BLOCK];
+    int TS1[4][BF_BLOCK], TF1[4][BF_BLOCK];
+    double T2[8][BF_BLOCK];
+    int TS2[8][BF_BLOCK], TF2[8][BF_BLOCK];
+    for (int p = 0; p < 1; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = ST[i], failed = FL[i];
+            _step0_L(S[0][i], S[1][i], S[2][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
+            int s0 = status, f0 = failed;
+            T0[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS0[2 * p + 0][i] = s0;
+            TF0[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T0[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS0[2 * p + 1][i] = s1;
+            TF0[2 * p + 1][i] = f1;
+        }
+    }
+    for (int p = 0; p < 2; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS0[p][i], failed = TF0[p][i];
+            _step1_t1(S[0][i], S[1][i], S[2][i], T0[p >> 0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
+            int s0 = status, f0 = failed;
+            T1[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS1[2 * p + 0][i] = s0;
+            TF1[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T1[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS1[2 * p + 1][i] = s1;
+            TF1[2 * p + 1][i] = f1;
+        }
+    }
+    for (int p = 0; p < 4; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS1[p][i], failed = TF1[p][i];
+            _step2_t2(S[0][i], S[1][i], S[2][i], T0[p >> 1][i], T1[p >> 0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], par[11], par[12], par[13], par[14], par[15], par[16], par[17], par[18], par[19], par[20], c);
+            int s0 = status, f0 = failed;
+            T2[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS2[2 * p + 0][i] = s0;
+            TF2[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T2[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS2[2 * p + 1][i] = s1;
+            TF2[2 * p + 1][i] = f1;
+        }
+    }
+    /* each mode's branch of each step */
+    static const int branch[8][3] = {
+        {0, 0, 0},
+        {1, 2, 4},
+        {0, 1, 2},
+        {1, 3, 6},
+        {0, 0, 1},
+        {1, 2, 5},
+        {0, 1, 3},
+        {1, 3, 7},
+    };
+    for (int mode = 0; mode < 8; mode++) {
+        const double *roots[] = {T0[branch[mode][0]], T1[branch[mode][1]], T2[branch[mode][2]]};
+        int b = branch[mode][2];
+        block_tail(m, P, S, roots, TS2[b], TF2[b], par, limits,
+                   q_out + mode * 3, 24, 0, 0, 0, public);
+    }
+}
+
+/* n poses (row-major, n x len(POSE)); q (n x 8 x len(JOINTS)): the joints of
+ * every working mode, the numbers bonered_solve gives mode by mode; par and public
+ * as there */
+void bonered_solve_all(long n, const double *pose, const double *par_in, int limits,
+                       double *q, int public)
+{
+    double par[21];
+    for (int k = 0; k < 21; k++)
+        par[k] = par_in[k];
+    for (long lo = 0; lo < n; lo += BF_BLOCK) {
+        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
+        solve_all_block(m, pose + lo * 3, par, limits, q + lo * 24, public);
     }
 }
 
@@ -289,3 +423,4 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
     }
     return count;
 }
+#endif

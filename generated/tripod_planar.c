@@ -3,12 +3,14 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 99e3b4c74b7878c79934ac5ae4210c1e262a0f9939918014298ff8d75a67d40c
+ * Derivation hash: 544e0a81d63dba9b4725266c4a32c4d107bf190568e429ef24fa557040bfe61f
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "99e3b4c74b7878c79934ac5ae4210c1e262a0f9939918014298ff8d75a67d40c";
+#if !defined(BF_PART) || BF_PART == 1
+const char bonered_derivation_hash[] = "544e0a81d63dba9b4725266c4a32c4d107bf190568e429ef24fa557040bfe61f";
 int bonered_abi(void) { return 3; }
+#endif
 
 /* Elementary functions of the pose that several stages take. */
 BF_INLINE void _shared(double v_x, double v_y, double v_z, double v_alpha, double v_beta, double v_gamma, double v_ra, double v_rb, double v_d, double *restrict out)
@@ -862,15 +864,153 @@ BF_INLINE void _limit_values(double v__f0, double v__f1, double v__f2, double v_
     out[8] = acos((-v__c33*v__c43 + v__c38*v__c42 + v__c39*v__c44)/sqrt((v__c42*v__c42) + (v__c43*v__c43) + (v__c44*v__c44)));
 }
 
+BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict Q)[BF_BLOCK], const double *restrict par, int *restrict ST, double *restrict jac_out, int stream, int public);
+
+#if !defined(BF_PART) || BF_PART == 2
+BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict Q)[BF_BLOCK], const double *restrict par, int *restrict ST, double *restrict jac_out, int stream, int public)
+{
+    (void)public;
+    double J[36][BF_BLOCK];
+    for (int i = 0; i < m; i++) {
+        double v[48];
+        _jac(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], v);
+        int status = ST[i];
+        int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[6]) | !(fabs(v[1]) > BF_DET_RTOL * v[7]) | !(fabs(v[2]) > BF_DET_RTOL * v[8]) | !(fabs(v[3]) > BF_DET_RTOL * v[9]) | !(fabs(v[4]) > BF_DET_RTOL * v[10]) | !(fabs(v[5]) > BF_DET_RTOL * v[11])) | (status == BF_ON_BOUNDARY);
+        J[0][i] = singular ? NAN : v[12];
+        J[1][i] = singular ? NAN : v[13];
+        J[2][i] = singular ? NAN : v[14];
+        J[3][i] = singular ? NAN : v[15];
+        J[4][i] = singular ? NAN : v[16];
+        J[5][i] = singular ? NAN : v[17];
+        J[6][i] = singular ? NAN : v[18];
+        J[7][i] = singular ? NAN : v[19];
+        J[8][i] = singular ? NAN : v[20];
+        J[9][i] = singular ? NAN : v[21];
+        J[10][i] = singular ? NAN : v[22];
+        J[11][i] = singular ? NAN : v[23];
+        J[12][i] = singular ? NAN : v[24];
+        J[13][i] = singular ? NAN : v[25];
+        J[14][i] = singular ? NAN : v[26];
+        J[15][i] = singular ? NAN : v[27];
+        J[16][i] = singular ? NAN : v[28];
+        J[17][i] = singular ? NAN : v[29];
+        J[18][i] = singular ? NAN : v[30];
+        J[19][i] = singular ? NAN : v[31];
+        J[20][i] = singular ? NAN : v[32];
+        J[21][i] = singular ? NAN : v[33];
+        J[22][i] = singular ? NAN : v[34];
+        J[23][i] = singular ? NAN : v[35];
+        J[24][i] = singular ? NAN : v[36];
+        J[25][i] = singular ? NAN : v[37];
+        J[26][i] = singular ? NAN : v[38];
+        J[27][i] = singular ? NAN : v[39];
+        J[28][i] = singular ? NAN : v[40];
+        J[29][i] = singular ? NAN : v[41];
+        J[30][i] = singular ? NAN : v[42];
+        J[31][i] = singular ? NAN : v[43];
+        J[32][i] = singular ? NAN : v[44];
+        J[33][i] = singular ? NAN : v[45];
+        J[34][i] = singular ? NAN : v[46];
+        J[35][i] = singular ? NAN : v[47];
+        ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
+    }
+#ifdef BF_HAVE_STREAM
+    if (stream && !((uintptr_t)jac_out & 15)) {  /* pairs, non-temporal */
+        for (int i = 0; i < m; i++)
+            for (int k = 0; k < 36; k += 2)
+                _mm_stream_pd(jac_out + i * 36 + k, _mm_set_pd(J[k + 1][i], J[k][i]));
+    } else
+#endif
+    for (int i = 0; i < m; i++)
+        for (int k = 0; k < 36; k++)
+            jac_out[i * 36 + k] = J[k][i];
+}
+#endif
+
+#if !defined(BF_PART) || BF_PART == 1
+static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+                       const double *const *restrict R, const int *restrict ST_in,
+                       const int *restrict FL_in, const double *restrict par,
+                       int limits, double *restrict q_out, long q_stride,
+                       signed char *restrict status_out, double *restrict jac_out,
+                       int stream, int public)
+{
+    double Q[6][BF_BLOCK];
+    int ST[BF_BLOCK];
+    (void)S;
+    for (int i = 0; i < m; i++) {
+        int failed = FL_in[i];
+        Q[3][i] = failed ? NAN : R[0][i];
+        Q[4][i] = failed ? NAN : R[1][i];
+        Q[5][i] = failed ? NAN : R[2][i];
+        Q[1][i] = failed ? NAN : R[3][i];
+        Q[0][i] = failed ? NAN : R[4][i];
+        Q[2][i] = failed ? NAN : R[5][i];
+        ST[i] = BF_SET(ST_in[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i]) & BF_FIN(P[3][i]) & BF_FIN(P[4][i]) & BF_FIN(P[5][i])), BF_INVALID_INPUT);
+    }
+    for (int i = 0; i < m; i++) {
+        double v[6];
+        _pivots(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], v);
+        int singular = ((fabs(v[0]) <= BF_DET_RTOL * fabs(v[3])) | (fabs(v[1]) <= BF_DET_RTOL * fabs(v[4])) | (fabs(v[2]) <= BF_DET_RTOL * fabs(v[5]))) & (BF_FIN(Q[0][i]) & BF_FIN(Q[1][i]) & BF_FIN(Q[2][i]) & BF_FIN(Q[3][i]) & BF_FIN(Q[4][i]) & BF_FIN(Q[5][i]));
+        Q[0][i] = singular ? NAN : Q[0][i];
+        Q[1][i] = singular ? NAN : Q[1][i];
+        Q[2][i] = singular ? NAN : Q[2][i];
+        Q[3][i] = singular ? NAN : Q[3][i];
+        Q[4][i] = singular ? NAN : Q[4][i];
+        Q[5][i] = singular ? NAN : Q[5][i];
+        ST[i] = BF_SET(ST[i], singular & (ST[i] == BF_OK), BF_INPUT_SINGULAR);
+    }
+    if (limits) {
+        for (int i = 0; i < m; i++) {
+            double v[9];
+            _limit_values(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], v);
+            int stroke = 0, passive = 0, status = ST[i];
+            stroke |= (v[0] < 160.0) | (v[0] > 320.0);
+            stroke |= (v[1] < 160.0) | (v[1] > 320.0);
+            stroke |= (v[2] < 160.0) | (v[2] > 320.0);
+            stroke |= (v[3] < 120.0) | (v[3] > 325.0);
+            stroke |= (v[4] < 120.0) | (v[4] > 325.0);
+            stroke |= (v[5] < 120.0) | (v[5] > 325.0);
+            passive |= (v[6] < -0.34906585039886595) | (v[6] > 0.34906585039886595);
+            passive |= (v[7] < -0.34906585039886595) | (v[7] > 0.34906585039886595);
+            passive |= (v[8] < -0.34906585039886595) | (v[8] > 0.34906585039886595);
+            int ok = BF_FIN(Q[0][i]) & BF_FIN(Q[1][i]) & BF_FIN(Q[2][i]) & BF_FIN(Q[3][i]) & BF_FIN(Q[4][i]) & BF_FIN(Q[5][i]);
+            int violated = stroke | passive;
+            Q[0][i] = violated ? NAN : Q[0][i];
+            Q[1][i] = violated ? NAN : Q[1][i];
+            Q[2][i] = violated ? NAN : Q[2][i];
+            Q[3][i] = violated ? NAN : Q[3][i];
+            Q[4][i] = violated ? NAN : Q[4][i];
+            Q[5][i] = violated ? NAN : Q[5][i];
+            status = BF_SET(status, ok & passive & (status == BF_OK), BF_PASSIVE_JOINT_LIMIT);
+            status = BF_SET(status, ok & stroke & ((status == BF_OK) | (status == BF_PASSIVE_JOINT_LIMIT)), BF_STROKE_LIMIT);
+            ST[i] = status;
+        }
+    }
+    if (jac_out)
+        bf_jacobian_block(m, P, F, Q, par, ST, jac_out, stream, public);
+    (void)public;
+    for (int i = 0; i < m; i++) {
+        q_out[i * q_stride + 0] = Q[0][i];
+        q_out[i * q_stride + 1] = Q[1][i];
+        q_out[i * q_stride + 2] = Q[2][i];
+        q_out[i * q_stride + 3] = Q[3][i];
+        q_out[i * q_stride + 4] = Q[4][i];
+        q_out[i * q_stride + 5] = Q[5][i];
+    }
+    if (status_out)
+        for (int i = 0; i < m; i++)
+            status_out[i] = (signed char)ST[i];
+}
+
 static void solve_block(int m, const double *restrict pose, const double *restrict par,
                         int mode, int limits, double *restrict q_out,
                         signed char *restrict status_out, double *restrict jac_out,
                         int stream, int public)
 {
-    double P[6][BF_BLOCK], S[10][BF_BLOCK], R[6][BF_BLOCK], Q[6][BF_BLOCK];
+    double P[6][BF_BLOCK], S[10][BF_BLOCK];
     double F[3][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
-    (void)mode;
     for (int i = 0; i < m; i++) {
         P[0][i] = pose[i * 6 + 0];
         P[1][i] = pose[i * 6 + 1];
@@ -902,6 +1042,8 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3]) & BF_FIN(s[4]) & BF_FIN(s[5]) & BF_FIN(s[6]) & BF_FIN(s[7]) & BF_FIN(s[8]) & BF_FIN(s[9])));
         FL[i] = 0;
     }
+    double R[6][BF_BLOCK];
+    (void)mode;
     for (int i = 0; i < m; i++) {
         double c[3];
         int status = ST[i], failed = FL[i];
@@ -950,120 +1092,167 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         ST[i] = status;
         FL[i] = failed;
     }
+    const double *roots[6] = {R[0], R[1], R[2], R[3], R[4], R[5]};
+    block_tail(m, P, F, S, roots, ST, FL, par, limits, q_out, 6, status_out,
+               jac_out, stream, public);
+}
+
+static void solve_all_block(int m, const double *restrict pose,
+                            const double *restrict par, int limits,
+                            double *restrict q_out, int public)
+{
+    double P[6][BF_BLOCK], S[10][BF_BLOCK];
+    double F[3][BF_BLOCK];
+    int ST[BF_BLOCK], FL[BF_BLOCK];
     for (int i = 0; i < m; i++) {
-        int failed = FL[i];
-        Q[3][i] = failed ? NAN : R[0][i];
-        Q[4][i] = failed ? NAN : R[1][i];
-        Q[5][i] = failed ? NAN : R[2][i];
-        Q[1][i] = failed ? NAN : R[3][i];
-        Q[0][i] = failed ? NAN : R[4][i];
-        Q[2][i] = failed ? NAN : R[5][i];
-        ST[i] = BF_SET(ST[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i]) & BF_FIN(P[3][i]) & BF_FIN(P[4][i]) & BF_FIN(P[5][i])), BF_INVALID_INPUT);
+        P[0][i] = pose[i * 6 + 0];
+        P[1][i] = pose[i * 6 + 1];
+        P[2][i] = pose[i * 6 + 2];
+        P[3][i] = pose[i * 6 + 3];
+        P[4][i] = pose[i * 6 + 4];
+        P[5][i] = pose[i * 6 + 5];
     }
     for (int i = 0; i < m; i++) {
-        double v[6];
-        _pivots(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], v);
-        int singular = ((fabs(v[0]) <= BF_DET_RTOL * fabs(v[3])) | (fabs(v[1]) <= BF_DET_RTOL * fabs(v[4])) | (fabs(v[2]) <= BF_DET_RTOL * fabs(v[5]))) & (BF_FIN(Q[0][i]) & BF_FIN(Q[1][i]) & BF_FIN(Q[2][i]) & BF_FIN(Q[3][i]) & BF_FIN(Q[4][i]) & BF_FIN(Q[5][i]));
-        Q[0][i] = singular ? NAN : Q[0][i];
-        Q[1][i] = singular ? NAN : Q[1][i];
-        Q[2][i] = singular ? NAN : Q[2][i];
-        Q[3][i] = singular ? NAN : Q[3][i];
-        Q[4][i] = singular ? NAN : Q[4][i];
-        Q[5][i] = singular ? NAN : Q[5][i];
-        ST[i] = BF_SET(ST[i], singular & (ST[i] == BF_OK), BF_INPUT_SINGULAR);
+        double f[3];
+        _shared(P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], par[2], f);
+        F[0][i] = f[0];
+        F[1][i] = f[1];
+        F[2][i] = f[2];
     }
-    if (limits) {
+    for (int i = 0; i < m; i++) {
+        double s[10];
+        _study(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], par[0], par[1], par[2], s);
+        S[0][i] = s[0];
+        S[1][i] = s[1];
+        S[2][i] = s[2];
+        S[3][i] = s[3];
+        S[4][i] = s[4];
+        S[5][i] = s[5];
+        S[6][i] = s[6];
+        S[7][i] = s[7];
+        S[8][i] = s[8];
+        S[9][i] = s[9];
+        ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3]) & BF_FIN(s[4]) & BF_FIN(s[5]) & BF_FIN(s[6]) & BF_FIN(s[7]) & BF_FIN(s[8]) & BF_FIN(s[9])));
+        FL[i] = 0;
+    }
+    double T0[1][BF_BLOCK];
+    int TS0[1][BF_BLOCK], TF0[1][BF_BLOCK];
+    double T1[1][BF_BLOCK];
+    int TS1[1][BF_BLOCK], TF1[1][BF_BLOCK];
+    double T2[1][BF_BLOCK];
+    int TS2[1][BF_BLOCK], TF2[1][BF_BLOCK];
+    double T3[2][BF_BLOCK];
+    int TS3[2][BF_BLOCK], TF3[2][BF_BLOCK];
+    double T4[4][BF_BLOCK];
+    int TS4[4][BF_BLOCK], TF4[4][BF_BLOCK];
+    double T5[8][BF_BLOCK];
+    int TS5[8][BF_BLOCK], TF5[8][BF_BLOCK];
+    for (int p = 0; p < 1; p++) {
         for (int i = 0; i < m; i++) {
-            double v[9];
-            _limit_values(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], v);
-            int stroke = 0, passive = 0, status = ST[i];
-            stroke |= (v[0] < 160.0) | (v[0] > 320.0);
-            stroke |= (v[1] < 160.0) | (v[1] > 320.0);
-            stroke |= (v[2] < 160.0) | (v[2] > 320.0);
-            stroke |= (v[3] < 120.0) | (v[3] > 325.0);
-            stroke |= (v[4] < 120.0) | (v[4] > 325.0);
-            stroke |= (v[5] < 120.0) | (v[5] > 325.0);
-            passive |= (v[6] < -0.34906585039886595) | (v[6] > 0.34906585039886595);
-            passive |= (v[7] < -0.34906585039886595) | (v[7] > 0.34906585039886595);
-            passive |= (v[8] < -0.34906585039886595) | (v[8] > 0.34906585039886595);
-            int ok = BF_FIN(Q[0][i]) & BF_FIN(Q[1][i]) & BF_FIN(Q[2][i]) & BF_FIN(Q[3][i]) & BF_FIN(Q[4][i]) & BF_FIN(Q[5][i]);
-            int violated = stroke | passive;
-            Q[0][i] = violated ? NAN : Q[0][i];
-            Q[1][i] = violated ? NAN : Q[1][i];
-            Q[2][i] = violated ? NAN : Q[2][i];
-            Q[3][i] = violated ? NAN : Q[3][i];
-            Q[4][i] = violated ? NAN : Q[4][i];
-            Q[5][i] = violated ? NAN : Q[5][i];
-            status = BF_SET(status, ok & passive & (status == BF_OK), BF_PASSIVE_JOINT_LIMIT);
-            status = BF_SET(status, ok & stroke & ((status == BF_OK) | (status == BF_PASSIVE_JOINT_LIMIT)), BF_STROKE_LIMIT);
-            ST[i] = status;
+            double c[3];
+            int status = ST[i], failed = FL[i];
+            _step0_q4(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], par[0], par[1], par[2], c);
+            T0[p][i] = bf_linear(c[1], c[2], &status, &failed);
+            TS0[p][i] = status;
+            TF0[p][i] = failed;
         }
     }
-    if (jac_out) {
-        double J[36][BF_BLOCK];
+    for (int p = 0; p < 1; p++) {
         for (int i = 0; i < m; i++) {
-            double v[48];
-            _jac(F[0][i], F[1][i], F[2][i], P[0][i], P[1][i], P[2][i], P[3][i], P[4][i], P[5][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], Q[4][i], Q[5][i], par[0], par[1], par[2], v);
-            int status = ST[i];
-            int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[6]) | !(fabs(v[1]) > BF_DET_RTOL * v[7]) | !(fabs(v[2]) > BF_DET_RTOL * v[8]) | !(fabs(v[3]) > BF_DET_RTOL * v[9]) | !(fabs(v[4]) > BF_DET_RTOL * v[10]) | !(fabs(v[5]) > BF_DET_RTOL * v[11])) | (status == BF_ON_BOUNDARY);
-            J[0][i] = singular ? NAN : v[12];
-            J[1][i] = singular ? NAN : v[13];
-            J[2][i] = singular ? NAN : v[14];
-            J[3][i] = singular ? NAN : v[15];
-            J[4][i] = singular ? NAN : v[16];
-            J[5][i] = singular ? NAN : v[17];
-            J[6][i] = singular ? NAN : v[18];
-            J[7][i] = singular ? NAN : v[19];
-            J[8][i] = singular ? NAN : v[20];
-            J[9][i] = singular ? NAN : v[21];
-            J[10][i] = singular ? NAN : v[22];
-            J[11][i] = singular ? NAN : v[23];
-            J[12][i] = singular ? NAN : v[24];
-            J[13][i] = singular ? NAN : v[25];
-            J[14][i] = singular ? NAN : v[26];
-            J[15][i] = singular ? NAN : v[27];
-            J[16][i] = singular ? NAN : v[28];
-            J[17][i] = singular ? NAN : v[29];
-            J[18][i] = singular ? NAN : v[30];
-            J[19][i] = singular ? NAN : v[31];
-            J[20][i] = singular ? NAN : v[32];
-            J[21][i] = singular ? NAN : v[33];
-            J[22][i] = singular ? NAN : v[34];
-            J[23][i] = singular ? NAN : v[35];
-            J[24][i] = singular ? NAN : v[36];
-            J[25][i] = singular ? NAN : v[37];
-            J[26][i] = singular ? NAN : v[38];
-            J[27][i] = singular ? NAN : v[39];
-            J[28][i] = singular ? NAN : v[40];
-            J[29][i] = singular ? NAN : v[41];
-            J[30][i] = singular ? NAN : v[42];
-            J[31][i] = singular ? NAN : v[43];
-            J[32][i] = singular ? NAN : v[44];
-            J[33][i] = singular ? NAN : v[45];
-            J[34][i] = singular ? NAN : v[46];
-            J[35][i] = singular ? NAN : v[47];
-            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
+            double c[3];
+            int status = TS0[p][i], failed = TF0[p][i];
+            _step1_q5(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 0][i], par[0], par[1], par[2], c);
+            T1[p][i] = bf_linear(c[1], c[2], &status, &failed);
+            TS1[p][i] = status;
+            TF1[p][i] = failed;
         }
-#ifdef BF_HAVE_STREAM
-        if (stream && !((uintptr_t)jac_out & 15)) {  /* pairs, non-temporal */
-            for (int i = 0; i < m; i++)
-                for (int k = 0; k < 36; k += 2)
-                    _mm_stream_pd(jac_out + i * 36 + k, _mm_set_pd(J[k + 1][i], J[k][i]));
-        } else
-#endif
-        for (int i = 0; i < m; i++)
-            for (int k = 0; k < 36; k++)
-                jac_out[i * 36 + k] = J[k][i];
     }
-    (void)public;
-    for (int i = 0; i < m; i++) {
-        q_out[i * 6 + 0] = Q[0][i];
-        q_out[i * 6 + 1] = Q[1][i];
-        q_out[i * 6 + 2] = Q[2][i];
-        q_out[i * 6 + 3] = Q[3][i];
-        q_out[i * 6 + 4] = Q[4][i];
-        q_out[i * 6 + 5] = Q[5][i];
-        status_out[i] = (signed char)ST[i];
+    for (int p = 0; p < 1; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS1[p][i], failed = TF1[p][i];
+            _step2_q6(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 0][i], T1[p >> 0][i], par[0], par[1], par[2], c);
+            T2[p][i] = bf_linear(c[1], c[2], &status, &failed);
+            TS2[p][i] = status;
+            TF2[p][i] = failed;
+        }
+    }
+    for (int p = 0; p < 1; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS2[p][i], failed = TF2[p][i];
+            _step3_q2(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 0][i], T1[p >> 0][i], T2[p >> 0][i], par[0], par[1], par[2], c);
+            int s0 = status, f0 = failed;
+            T3[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS3[2 * p + 0][i] = s0;
+            TF3[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T3[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS3[2 * p + 1][i] = s1;
+            TF3[2 * p + 1][i] = f1;
+        }
+    }
+    for (int p = 0; p < 2; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS3[p][i], failed = TF3[p][i];
+            _step4_q1(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 1][i], T1[p >> 1][i], T2[p >> 1][i], T3[p >> 0][i], par[0], par[1], par[2], c);
+            int s0 = status, f0 = failed;
+            T4[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS4[2 * p + 0][i] = s0;
+            TF4[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T4[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS4[2 * p + 1][i] = s1;
+            TF4[2 * p + 1][i] = f1;
+        }
+    }
+    for (int p = 0; p < 4; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS4[p][i], failed = TF4[p][i];
+            _step5_q3(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 2][i], T1[p >> 2][i], T2[p >> 2][i], T3[p >> 1][i], T4[p >> 0][i], par[0], par[1], par[2], c);
+            int s0 = status, f0 = failed;
+            T5[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS5[2 * p + 0][i] = s0;
+            TF5[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T5[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS5[2 * p + 1][i] = s1;
+            TF5[2 * p + 1][i] = f1;
+        }
+    }
+    /* each mode's branch of each step */
+    static const int branch[8][6] = {
+        {0, 0, 0, 0, 0, 0},
+        {0, 0, 0, 1, 2, 4},
+        {0, 0, 0, 0, 1, 2},
+        {0, 0, 0, 1, 3, 6},
+        {0, 0, 0, 0, 0, 1},
+        {0, 0, 0, 1, 2, 5},
+        {0, 0, 0, 0, 1, 3},
+        {0, 0, 0, 1, 3, 7},
+    };
+    for (int mode = 0; mode < 8; mode++) {
+        const double *roots[] = {T0[branch[mode][0]], T1[branch[mode][1]], T2[branch[mode][2]], T3[branch[mode][3]], T4[branch[mode][4]], T5[branch[mode][5]]};
+        int b = branch[mode][5];
+        block_tail(m, P, F, S, roots, TS5[b], TF5[b], par, limits,
+                   q_out + mode * 6, 48, 0, 0, 0, public);
+    }
+}
+
+/* n poses (row-major, n x len(POSE)); q (n x 8 x len(JOINTS)): the joints of
+ * every working mode, the numbers bonered_solve gives mode by mode; par and public
+ * as there */
+void bonered_solve_all(long n, const double *pose, const double *par_in, int limits,
+                       double *q, int public)
+{
+    double par[3];
+    for (int k = 0; k < 3; k++)
+        par[k] = par_in[k];
+    for (long lo = 0; lo < n; lo += BF_BLOCK) {
+        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
+        solve_all_block(m, pose + lo * 6, par, limits, q + lo * 48, public);
     }
 }
 
@@ -1146,3 +1335,4 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
     }
     return count;
 }
+#endif

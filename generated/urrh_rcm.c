@@ -3,12 +3,14 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c856b8f2bc21bd93be4c399d152db005c8936c5893dd341f79a1eb2c283189d9
+ * Derivation hash: e6cd16bd884982015330d04464145affd1e92e1e070465989219c96ddd025252
  */
 #include "bonered_fast.h"
 
-const char bonered_derivation_hash[] = "c856b8f2bc21bd93be4c399d152db005c8936c5893dd341f79a1eb2c283189d9";
+#if !defined(BF_PART) || BF_PART == 1
+const char bonered_derivation_hash[] = "e6cd16bd884982015330d04464145affd1e92e1e070465989219c96ddd025252";
 int bonered_abi(void) { return 3; }
+#endif
 
 /* Elementary functions of the pose that several stages take. */
 BF_INLINE void _shared(double v_theta1, double v_theta2, double v_d, double v_gamma, double v_loa1, double v_lab1, double v_lbc1, double v_lae1, double v_lef1, double v_loa2, double v_lab2, double v_lbc2, double v_lae2, double v_lef2, double v_p, double *restrict out)
@@ -277,15 +279,138 @@ BF_INLINE void _limit_values(double v_theta1, double v_theta2, double v_d, doubl
     out[1] = v_d - v_p*v_gamma;
 }
 
+BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict Q)[BF_BLOCK], const double *restrict par, int *restrict ST, double *restrict jac_out, int stream, int public);
+
+#if !defined(BF_PART) || BF_PART == 2
+BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict Q)[BF_BLOCK], const double *restrict par, int *restrict ST, double *restrict jac_out, int stream, int public)
+{
+    double J[16][BF_BLOCK];
+    for (int i = 0; i < m; i++) {
+        double v[24];
+        _jac(F[0][i], F[1][i], P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
+        int status = ST[i];
+        int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[4]) | !(fabs(v[1]) > BF_DET_RTOL * v[5]) | !(fabs(v[2]) > BF_DET_RTOL * v[6]) | !(fabs(v[3]) > BF_DET_RTOL * v[7])) | (status == BF_ON_BOUNDARY);
+        J[0][i] = singular ? NAN : v[8];
+        J[1][i] = singular ? NAN : v[9];
+        J[2][i] = singular ? NAN : v[10];
+        J[3][i] = singular ? NAN : v[11];
+        J[4][i] = singular ? NAN : v[12];
+        J[5][i] = singular ? NAN : v[13];
+        J[6][i] = singular ? NAN : v[14];
+        J[7][i] = singular ? NAN : v[15];
+        J[8][i] = singular ? NAN : v[16];
+        J[9][i] = singular ? NAN : v[17];
+        J[10][i] = singular ? NAN : v[18];
+        J[11][i] = singular ? NAN : v[19];
+        J[12][i] = singular ? NAN : v[20];
+        J[13][i] = singular ? NAN : v[21];
+        J[14][i] = singular ? NAN : v[22];
+        J[15][i] = singular ? NAN : v[23];
+        ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
+    }
+    if (public) {  /* the angle joints' rows times dq/dt = 2 / (1 + t^2) */
+        for (int i = 0; i < m; i++) {
+            double d0 = 2.0 / (1.0 + Q[0][i] * Q[0][i]);
+            J[0][i] *= d0;
+            J[1][i] *= d0;
+            J[2][i] *= d0;
+            J[3][i] *= d0;
+            double d1 = 2.0 / (1.0 + Q[1][i] * Q[1][i]);
+            J[4][i] *= d1;
+            J[5][i] *= d1;
+            J[6][i] *= d1;
+            J[7][i] *= d1;
+            double d2 = 2.0 / (1.0 + Q[2][i] * Q[2][i]);
+            J[8][i] *= d2;
+            J[9][i] *= d2;
+            J[10][i] *= d2;
+            J[11][i] *= d2;
+            double d3 = 2.0 / (1.0 + Q[3][i] * Q[3][i]);
+            J[12][i] *= d3;
+            J[13][i] *= d3;
+            J[14][i] *= d3;
+            J[15][i] *= d3;
+        }
+    }
+#ifdef BF_HAVE_STREAM
+    if (stream && !((uintptr_t)jac_out & 15)) {  /* pairs, non-temporal */
+        for (int i = 0; i < m; i++)
+            for (int k = 0; k < 16; k += 2)
+                _mm_stream_pd(jac_out + i * 16 + k, _mm_set_pd(J[k + 1][i], J[k][i]));
+    } else
+#endif
+    for (int i = 0; i < m; i++)
+        for (int k = 0; k < 16; k++)
+            jac_out[i * 16 + k] = J[k][i];
+}
+#endif
+
+#if !defined(BF_PART) || BF_PART == 1
+static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+                       const double *const *restrict R, const int *restrict ST_in,
+                       const int *restrict FL_in, const double *restrict par,
+                       int limits, double *restrict q_out, long q_stride,
+                       signed char *restrict status_out, double *restrict jac_out,
+                       int stream, int public)
+{
+    double Q[4][BF_BLOCK];
+    int ST[BF_BLOCK];
+    (void)S;
+    for (int i = 0; i < m; i++) {
+        int failed = FL_in[i];
+        Q[0][i] = failed ? NAN : R[0][i];
+        Q[1][i] = failed ? NAN : R[1][i];
+        Q[2][i] = failed ? NAN : R[2][i];
+        Q[3][i] = failed ? NAN : R[3][i];
+        ST[i] = BF_SET(ST_in[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i]) & BF_FIN(P[3][i])), BF_INVALID_INPUT);
+    }
+    if (limits) {
+        for (int i = 0; i < m; i++) {
+            double v[2];
+            _limit_values(P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
+            int stroke = 0, passive = 0, status = ST[i];
+            passive |= (v[0] < 0.0) | (v[0] > 303.4);
+            passive |= (v[1] < 0.0) | (v[1] > 323.0);
+            int ok = BF_FIN(Q[0][i]) & BF_FIN(Q[1][i]) & BF_FIN(Q[2][i]) & BF_FIN(Q[3][i]);
+            int violated = stroke | passive;
+            Q[0][i] = violated ? NAN : Q[0][i];
+            Q[1][i] = violated ? NAN : Q[1][i];
+            Q[2][i] = violated ? NAN : Q[2][i];
+            Q[3][i] = violated ? NAN : Q[3][i];
+            status = BF_SET(status, ok & passive & (status == BF_OK), BF_PASSIVE_JOINT_LIMIT);
+            status = BF_SET(status, ok & stroke & ((status == BF_OK) | (status == BF_PASSIVE_JOINT_LIMIT)), BF_STROKE_LIMIT);
+            ST[i] = status;
+        }
+    }
+    if (jac_out)
+        bf_jacobian_block(m, P, F, Q, par, ST, jac_out, stream, public);
+    if (public) {  /* the angle joints as angles, q = 2 atan(t) */
+        for (int i = 0; i < m; i++) {
+            Q[0][i] = 2.0 * atan(Q[0][i]);
+            Q[1][i] = 2.0 * atan(Q[1][i]);
+            Q[2][i] = 2.0 * atan(Q[2][i]);
+            Q[3][i] = 2.0 * atan(Q[3][i]);
+        }
+    }
+    for (int i = 0; i < m; i++) {
+        q_out[i * q_stride + 0] = Q[0][i];
+        q_out[i * q_stride + 1] = Q[1][i];
+        q_out[i * q_stride + 2] = Q[2][i];
+        q_out[i * q_stride + 3] = Q[3][i];
+    }
+    if (status_out)
+        for (int i = 0; i < m; i++)
+            status_out[i] = (signed char)ST[i];
+}
+
 static void solve_block(int m, const double *restrict pose, const double *restrict par,
                         int mode, int limits, double *restrict q_out,
                         signed char *restrict status_out, double *restrict jac_out,
                         int stream, int public)
 {
-    double P[4][BF_BLOCK], S[4][BF_BLOCK], R[4][BF_BLOCK], Q[4][BF_BLOCK];
+    double P[4][BF_BLOCK], S[4][BF_BLOCK];
     double F[2][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
-    (void)mode;
     for (int i = 0; i < m; i++) {
         P[0][i] = pose[i * 4 + 0];
         P[1][i] = pose[i * 4 + 1];
@@ -308,6 +433,8 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3])));
         FL[i] = 0;
     }
+    double R[4][BF_BLOCK];
+    (void)mode;
     for (int i = 0; i < m; i++) {
         double c[3];
         int status = ST[i], failed = FL[i];
@@ -340,106 +467,134 @@ static void solve_block(int m, const double *restrict pose, const double *restri
         ST[i] = status;
         FL[i] = failed;
     }
+    const double *roots[4] = {R[0], R[1], R[2], R[3]};
+    block_tail(m, P, F, S, roots, ST, FL, par, limits, q_out, 4, status_out,
+               jac_out, stream, public);
+}
+
+static void solve_all_block(int m, const double *restrict pose,
+                            const double *restrict par, int limits,
+                            double *restrict q_out, int public)
+{
+    double P[4][BF_BLOCK], S[4][BF_BLOCK];
+    double F[2][BF_BLOCK];
+    int ST[BF_BLOCK], FL[BF_BLOCK];
     for (int i = 0; i < m; i++) {
-        int failed = FL[i];
-        Q[0][i] = failed ? NAN : R[0][i];
-        Q[1][i] = failed ? NAN : R[1][i];
-        Q[2][i] = failed ? NAN : R[2][i];
-        Q[3][i] = failed ? NAN : R[3][i];
-        ST[i] = BF_SET(ST[i], 1 - (BF_FIN(P[0][i]) & BF_FIN(P[1][i]) & BF_FIN(P[2][i]) & BF_FIN(P[3][i])), BF_INVALID_INPUT);
-    }
-    if (limits) {
-        for (int i = 0; i < m; i++) {
-            double v[2];
-            _limit_values(P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
-            int stroke = 0, passive = 0, status = ST[i];
-            passive |= (v[0] < 0.0) | (v[0] > 303.4);
-            passive |= (v[1] < 0.0) | (v[1] > 323.0);
-            int ok = BF_FIN(Q[0][i]) & BF_FIN(Q[1][i]) & BF_FIN(Q[2][i]) & BF_FIN(Q[3][i]);
-            int violated = stroke | passive;
-            Q[0][i] = violated ? NAN : Q[0][i];
-            Q[1][i] = violated ? NAN : Q[1][i];
-            Q[2][i] = violated ? NAN : Q[2][i];
-            Q[3][i] = violated ? NAN : Q[3][i];
-            status = BF_SET(status, ok & passive & (status == BF_OK), BF_PASSIVE_JOINT_LIMIT);
-            status = BF_SET(status, ok & stroke & ((status == BF_OK) | (status == BF_PASSIVE_JOINT_LIMIT)), BF_STROKE_LIMIT);
-            ST[i] = status;
-        }
-    }
-    if (jac_out) {
-        double J[16][BF_BLOCK];
-        for (int i = 0; i < m; i++) {
-            double v[24];
-            _jac(F[0][i], F[1][i], P[0][i], P[1][i], P[2][i], P[3][i], Q[0][i], Q[1][i], Q[2][i], Q[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], v);
-            int status = ST[i];
-            int singular = (!(fabs(v[0]) > BF_DET_RTOL * v[4]) | !(fabs(v[1]) > BF_DET_RTOL * v[5]) | !(fabs(v[2]) > BF_DET_RTOL * v[6]) | !(fabs(v[3]) > BF_DET_RTOL * v[7])) | (status == BF_ON_BOUNDARY);
-            J[0][i] = singular ? NAN : v[8];
-            J[1][i] = singular ? NAN : v[9];
-            J[2][i] = singular ? NAN : v[10];
-            J[3][i] = singular ? NAN : v[11];
-            J[4][i] = singular ? NAN : v[12];
-            J[5][i] = singular ? NAN : v[13];
-            J[6][i] = singular ? NAN : v[14];
-            J[7][i] = singular ? NAN : v[15];
-            J[8][i] = singular ? NAN : v[16];
-            J[9][i] = singular ? NAN : v[17];
-            J[10][i] = singular ? NAN : v[18];
-            J[11][i] = singular ? NAN : v[19];
-            J[12][i] = singular ? NAN : v[20];
-            J[13][i] = singular ? NAN : v[21];
-            J[14][i] = singular ? NAN : v[22];
-            J[15][i] = singular ? NAN : v[23];
-            ST[i] = BF_SET(status, ((status == BF_OK) | (status == BF_ON_BOUNDARY)) & singular, BF_INPUT_SINGULAR);
-        }
-        if (public) {  /* the angle joints' rows times dq/dt = 2 / (1 + t^2) */
-            for (int i = 0; i < m; i++) {
-                double d0 = 2.0 / (1.0 + Q[0][i] * Q[0][i]);
-                J[0][i] *= d0;
-                J[1][i] *= d0;
-                J[2][i] *= d0;
-                J[3][i] *= d0;
-                double d1 = 2.0 / (1.0 + Q[1][i] * Q[1][i]);
-                J[4][i] *= d1;
-                J[5][i] *= d1;
-                J[6][i] *= d1;
-                J[7][i] *= d1;
-                double d2 = 2.0 / (1.0 + Q[2][i] * Q[2][i]);
-                J[8][i] *= d2;
-                J[9][i] *= d2;
-                J[10][i] *= d2;
-                J[11][i] *= d2;
-                double d3 = 2.0 / (1.0 + Q[3][i] * Q[3][i]);
-                J[12][i] *= d3;
-                J[13][i] *= d3;
-                J[14][i] *= d3;
-                J[15][i] *= d3;
-            }
-        }
-#ifdef BF_HAVE_STREAM
-        if (stream && !((uintptr_t)jac_out & 15)) {  /* pairs, non-temporal */
-            for (int i = 0; i < m; i++)
-                for (int k = 0; k < 16; k += 2)
-                    _mm_stream_pd(jac_out + i * 16 + k, _mm_set_pd(J[k + 1][i], J[k][i]));
-        } else
-#endif
-        for (int i = 0; i < m; i++)
-            for (int k = 0; k < 16; k++)
-                jac_out[i * 16 + k] = J[k][i];
-    }
-    if (public) {  /* the angle joints as angles, q = 2 atan(t) */
-        for (int i = 0; i < m; i++) {
-            Q[0][i] = 2.0 * atan(Q[0][i]);
-            Q[1][i] = 2.0 * atan(Q[1][i]);
-            Q[2][i] = 2.0 * atan(Q[2][i]);
-            Q[3][i] = 2.0 * atan(Q[3][i]);
-        }
+        P[0][i] = pose[i * 4 + 0];
+        P[1][i] = pose[i * 4 + 1];
+        P[2][i] = pose[i * 4 + 2];
+        P[3][i] = pose[i * 4 + 3];
     }
     for (int i = 0; i < m; i++) {
-        q_out[i * 4 + 0] = Q[0][i];
-        q_out[i * 4 + 1] = Q[1][i];
-        q_out[i * 4 + 2] = Q[2][i];
-        q_out[i * 4 + 3] = Q[3][i];
-        status_out[i] = (signed char)ST[i];
+        double f[2];
+        _shared(P[0][i], P[1][i], P[2][i], P[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], f);
+        F[0][i] = f[0];
+        F[1][i] = f[1];
+    }
+    for (int i = 0; i < m; i++) {
+        double s[4];
+        _study(F[0][i], F[1][i], P[0][i], P[1][i], P[2][i], P[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], s);
+        S[0][i] = s[0];
+        S[1][i] = s[1];
+        S[2][i] = s[2];
+        S[3][i] = s[3];
+        ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3])));
+        FL[i] = 0;
+    }
+    double T0[1][BF_BLOCK];
+    int TS0[1][BF_BLOCK], TF0[1][BF_BLOCK];
+    double T1[2][BF_BLOCK];
+    int TS1[2][BF_BLOCK], TF1[2][BF_BLOCK];
+    double T2[4][BF_BLOCK];
+    int TS2[4][BF_BLOCK], TF2[4][BF_BLOCK];
+    double T3[8][BF_BLOCK];
+    int TS3[8][BF_BLOCK], TF3[8][BF_BLOCK];
+    for (int p = 0; p < 1; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = ST[i], failed = FL[i];
+            _step0_a1(S[0][i], S[1][i], S[2][i], S[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            T0[p][i] = bf_linear(c[1], c[2], &status, &failed);
+            TS0[p][i] = status;
+            TF0[p][i] = failed;
+        }
+    }
+    for (int p = 0; p < 1; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS0[p][i], failed = TF0[p][i];
+            _step1_a2(S[0][i], S[1][i], S[2][i], S[3][i], T0[p >> 0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            int s0 = status, f0 = failed;
+            T1[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS1[2 * p + 0][i] = s0;
+            TF1[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T1[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS1[2 * p + 1][i] = s1;
+            TF1[2 * p + 1][i] = f1;
+        }
+    }
+    for (int p = 0; p < 2; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS1[p][i], failed = TF1[p][i];
+            _step2_b1(S[0][i], S[1][i], S[2][i], S[3][i], T0[p >> 1][i], T1[p >> 0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            int s0 = status, f0 = failed;
+            T2[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS2[2 * p + 0][i] = s0;
+            TF2[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T2[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS2[2 * p + 1][i] = s1;
+            TF2[2 * p + 1][i] = f1;
+        }
+    }
+    for (int p = 0; p < 4; p++) {
+        for (int i = 0; i < m; i++) {
+            double c[3];
+            int status = TS2[p][i], failed = TF2[p][i];
+            _step3_b2(S[0][i], S[1][i], S[2][i], S[3][i], T0[p >> 2][i], T1[p >> 1][i], T2[p >> 0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            int s0 = status, f0 = failed;
+            T3[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            TS3[2 * p + 0][i] = s0;
+            TF3[2 * p + 0][i] = f0;
+            int s1 = status, f1 = failed;
+            T3[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            TS3[2 * p + 1][i] = s1;
+            TF3[2 * p + 1][i] = f1;
+        }
+    }
+    /* each mode's branch of each step */
+    static const int branch[8][4] = {
+        {0, 0, 0, 0},
+        {0, 1, 2, 4},
+        {0, 0, 1, 2},
+        {0, 1, 3, 6},
+        {0, 0, 0, 1},
+        {0, 1, 2, 5},
+        {0, 0, 1, 3},
+        {0, 1, 3, 7},
+    };
+    for (int mode = 0; mode < 8; mode++) {
+        const double *roots[] = {T0[branch[mode][0]], T1[branch[mode][1]], T2[branch[mode][2]], T3[branch[mode][3]]};
+        int b = branch[mode][3];
+        block_tail(m, P, F, S, roots, TS3[b], TF3[b], par, limits,
+                   q_out + mode * 4, 32, 0, 0, 0, public);
+    }
+}
+
+/* n poses (row-major, n x len(POSE)); q (n x 8 x len(JOINTS)): the joints of
+ * every working mode, the numbers bonered_solve gives mode by mode; par and public
+ * as there */
+void bonered_solve_all(long n, const double *pose, const double *par_in, int limits,
+                       double *q, int public)
+{
+    double par[11];
+    for (int k = 0; k < 11; k++)
+        par[k] = par_in[k];
+    for (long lo = 0; lo < n; lo += BF_BLOCK) {
+        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
+        solve_all_block(m, pose + lo * 4, par, limits, q + lo * 32, public);
     }
 }
 
@@ -522,3 +677,4 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
     }
     return count;
 }
+#endif

@@ -87,6 +87,28 @@ def test_compiled_agrees_with_numpy_in_every_mode(name):
     _close(m, m.ik_all(poses[:200], fast=False), m.ik_all(poses[:200], fast=True))
 
 
+@pytest.mark.parametrize("name", NAMES)
+def test_compiled_ik_all_is_compiled_ik_mode_by_mode(name, monkeypatch):
+    """ik_all on the fast path (bonered_solve_all: each IK step once per choice of the
+    earlier roots, both roots of a quadratic from one set of coefficients) gives the
+    numbers of ik mode by mode bit for bit, with and without limits, over threads and any
+    leading shape; and it is that entry that answers, not the loop over the modes."""
+    m = _module(name)
+    assert hasattr(m._MODEL.fast.library(), "bonered_solve_all")
+    poses = _poses(name, 2 * compiled.MIN_PER_THREAD + 11, seed=5)
+    monkeypatch.setenv("BONERED_ALG_THREADS", "2")
+    for limits in (True, False):
+        every = m.ik_all(poses.reshape(-1, 1, len(m.POSE)), limits=limits, fast=True)
+        assert every.shape == (len(poses), 1, m.MODES, len(m.JOINTS))
+        for mode in range(m.MODES):
+            one = m.ik(poses, mode=mode, limits=limits, fast=True)
+            assert np.array_equal(every[:, 0, mode], one, equal_nan=True), (limits, mode)
+        assert np.isfinite(every).any() and np.isnan(every).any()
+    single = m.ik_all(poses[0], fast=True)
+    assert single.shape == (m.MODES, len(m.JOINTS))
+    assert np.array_equal(single, m.ik_all(poses[:1], fast=True)[0], equal_nan=True)
+
+
 def test_large_batches_split_over_threads_give_the_same_answer(monkeypatch):
     m = _module("planar_tripod")
     poses = _poses("planar_tripod", 3 * compiled.MIN_PER_THREAD + 7, seed=3)
@@ -147,6 +169,48 @@ def test_the_library_is_built_once_into_the_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("BONERED_ALG_CACHE", str(tmp_path / "other"))
     fp = compiled.FastPath.beside(*args)
     assert fp.library() is None and "no-such-compiler" in fp.reason
+
+
+def test_the_file_built_in_parts_is_the_file_built_whole(tmp_path, monkeypatch):
+    """generated/<name>.c is built as two translation units compiled at once (the Jacobian
+    stage, BF_PART 2, beside the rest), which is what keeps the first call within 5 s
+    (bench: fast_path_build); compiled whole, as one compiler call without BF_PART, the
+    file is the same program: the same joints, Jacobians and codes bit for bit."""
+    import subprocess
+
+    name = "lamina_milling"  # angle joints: the Jacobian stage takes ``public`` too
+    m = _module(name)
+    source = ROOT / "generated" / f"{name}.c"
+    assert b"BF_PART == 1" in source.read_bytes() and b"BF_PART == 2" in source.read_bytes()
+    args = (str(ROOT / "generated" / f"{name}.py"), name, m.DERIVATION_HASH, len(m.POSE),
+            len(m.JOINTS), len(m.PARAMETERS))
+    units = []
+    popen = subprocess.Popen
+
+    def counted(cmd, *a, **k):
+        units.extend(c for c in cmd if c.startswith("-DBF_PART="))  # (and cc --version, link)
+        return popen(cmd, *a, **k)
+
+    monkeypatch.setattr(compiled.subprocess, "Popen", counted)
+    monkeypatch.setenv("BONERED_ALG_CACHE", str(tmp_path / "parts"))
+    parts = compiled.FastPath.beside(*args)
+    assert parts.library() is not None, parts.reason
+    assert sorted(units) == ["-DBF_PART=1", "-DBF_PART=2"]
+    build = compiled._build  # noqa: SLF001
+    monkeypatch.setattr(compiled, "_build", lambda cc, flags, src, text, out: build(
+        cc, flags, src, b"", out))  # no parts declared: one compiler call on the whole file
+    monkeypatch.setenv("BONERED_ALG_CACHE", str(tmp_path / "whole"))
+    whole = compiled.FastPath.beside(*args)
+    assert whole.library() is not None, whole.reason
+    assert len(units) == 2
+    poses = _poses(name, 3000, seed=4)
+    par = [m.PARAMETERS[k] for k in m.PARAMETERS]
+    for limits, public in ((True, True), (False, False)):
+        a = parts.solve(poses, par, 0, limits, True, public)
+        b = whole.solve(poses, par, 0, limits, True, public)
+        for x, y in zip(a, b):
+            assert np.array_equal(x, y, equal_nan=True)
+        assert st.OK in a[1] and (a[1] != st.OK).any()
 
 
 def test_numpy_chunks_give_the_unchunked_answer():

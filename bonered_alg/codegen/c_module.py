@@ -80,8 +80,10 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         " */",
         '#include "bonered_fast.h"',
         "",
+        *_part_begin(1),
         f'const char bonered_derivation_hash[] = "{derivation_hash}";',
         f"int bonered_abi(void) {{ return {C_ABI}; }}",
+        *_part_end(),
         "",
     ]
     if shared:
@@ -110,17 +112,14 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
     # pose: after a failure the status is a failure code no later step changes
     # (backsubstitute: the first failure wins) and every joint is NaN, so this changes no
     # result.
-    body = [
-        "static void solve_block(int m, const double *restrict pose, const double *restrict par,",
-        "                        int mode, int limits, double *restrict q_out,",
-        "                        signed char *restrict status_out, double *restrict jac_out,",
-        "                        int stream, int public)",
-        "{",
-        f"    double P[{npose}][BF_BLOCK], S[{nstudy}][BF_BLOCK], "
-        f"R[{max(nsteps, 1)}][BF_BLOCK], Q[{nj}][BF_BLOCK];",
+    Fp = ["F"] if shared else []
+    shared_param = ["double (*restrict F)[BF_BLOCK]"] if shared else []
+    # the first stages of a block, in solve_block and solve_all_block alike: the poses in
+    # structure-of-arrays form, the shared functions, the Study map
+    prelude = [
+        f"    double P[{npose}][BF_BLOCK], S[{nstudy}][BF_BLOCK];",
         *([f"    double F[{len(shared)}][BF_BLOCK];"] if shared else []),
         "    int ST[BF_BLOCK], FL[BF_BLOCK];",
-        "    (void)mode;",
         "    for (int i = 0; i < m; i++) {",
         *[f"        {P[k]} = pose[i * {npose} + {k}];" for k in range(npose)],
         "    }",
@@ -139,24 +138,42 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "        FL[i] = 0;",
         "    }",
     ]
+    steps_of_mode = []
     for k, (degree, kern, bit) in enumerate(steps):
-        body += [
+        steps_of_mode += [
             "    for (int i = 0; i < m; i++) {",
             "        double c[3];",
             "        int status = ST[i], failed = FL[i];",
             f"        {call(kern, S + R[:k] + par, 'c')}",
         ]
         if degree == 1:
-            body.append(f"        {R[k]} = bf_linear(c[1], c[2], &status, &failed);")
+            steps_of_mode.append(f"        {R[k]} = bf_linear(c[1], c[2], &status, &failed);")
         else:
-            body.append(f"        {R[k]} = bf_quadratic(c[0], c[1], c[2], (mode >> {bit}) & 1,"
-                        " &status, &failed);")
-        body += ["        ST[i] = status;", "        FL[i] = failed;", "    }"]
-    body += [
+            steps_of_mode.append(f"        {R[k]} = bf_quadratic(c[0], c[1], c[2], (mode >> {bit})"
+                                 " & 1, &status, &failed);")
+        steps_of_mode += ["        ST[i] = status;", "        FL[i] = failed;", "    }"]
+    # What follows the IK steps (the joints from the roots, the pivots, the limits, the
+    # Jacobian, the user's units, the output) for the roots R[k] of one working mode, with
+    # their status ST_in and failure flags FL_in: a function of its own, which solve_block
+    # calls for its mode and solve_all_block for every mode in turn.
+    body = [
+        *_part_begin(1),
+        "static void block_tail(int m, double (*restrict P)[BF_BLOCK], "
+        + "".join(f"{x}, " for x in shared_param)
+        + "double (*restrict S)[BF_BLOCK],",
+        "                       const double *const *restrict R, const int *restrict ST_in,",
+        "                       const int *restrict FL_in, const double *restrict par,",
+        "                       int limits, double *restrict q_out, long q_stride,",
+        "                       signed char *restrict status_out, double *restrict jac_out,",
+        "                       int stream, int public)",
+        "{",
+        f"    double Q[{nj}][BF_BLOCK];",
+        "    int ST[BF_BLOCK];",
+        "    (void)S;",
         "    for (int i = 0; i < m; i++) {",
-        "        int failed = FL[i];",
+        "        int failed = FL_in[i];",
         *[f"        {Q[j]} = failed ? NAN : {R[k]};" for k, j in enumerate(solve_index)],
-        f"        ST[i] = BF_SET(ST[i], 1 - ({finite(P)}), BF_INVALID_INPUT);",
+        f"        ST[i] = BF_SET(ST_in[i], 1 - ({finite(P)}), BF_INVALID_INPUT);",
         "    }",
     ]
     if pivots is not None:
@@ -200,8 +217,25 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         ]
     else:
         body.append("    (void)limits;")
-    body += [
-        "    if (jac_out) {",
+    # The Jacobian stage is a function of its own, which the runtime compiles in a
+    # translation unit of its own (BF_PART 2) beside the rest (BF_PART 1), both at once: the
+    # Jacobian kernel is the largest, and one compiler call on the whole file took 5.2 s
+    # for tripod_planar on this project's machine, two in parallel 2.7 s.  Compiled as one
+    # file (BF_PART undefined), it is the same program.
+    jac_params = ", ".join([
+        "int m", "double (*restrict P)[BF_BLOCK]", *shared_param,
+        "double (*restrict Q)[BF_BLOCK]", "const double *restrict par", "int *restrict ST",
+        "double *restrict jac_out", "int stream", "int public"])
+    jac_args = ", ".join(["m", "P", *(["F"] if shared else []), "Q", "par", "ST", "jac_out",
+                          "stream", "public"])
+    jac_prototype = f"BF_INTERNAL void bf_jacobian_block({jac_params})"
+    jac_block = [
+        f"{jac_prototype};",
+        "",
+        *_part_begin(2),
+        jac_prototype,
+        "{",
+        *([] if angles else ["    (void)public;"]),
         f"        double J[{nj_entries}][BF_BLOCK];",
         "        for (int i = 0; i < m; i++) {",
         f"            double v[{jac.outputs}];",
@@ -236,7 +270,12 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "        for (int i = 0; i < m; i++)",
         f"            for (int k = 0; k < {nj_entries}; k++)",
         f"                jac_out[i * {nj_entries} + k] = J[k][i];",
-        "    }",
+    ]
+    jac_block = [line[4:] if line.startswith("        ") else line for line in jac_block]
+    jac_block += ["}", *_part_end(), ""]
+    body += [
+        "    if (jac_out)",
+        f"        bf_jacobian_block({jac_args});",
         *([
             "    if (public) {  /* the angle joints as angles, q = 2 atan(t) */",
             "        for (int i = 0; i < m; i++) {",
@@ -244,11 +283,30 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
             "        }",
             "    }"] if angles else ["    (void)public;"]),
         "    for (int i = 0; i < m; i++) {",
-        *[f"        q_out[i * {nj} + {j}] = {Q[j]};" for j in range(nj)],
-        "        status_out[i] = (signed char)ST[i];",
+        *[f"        q_out[i * q_stride + {j}] = {Q[j]};" for j in range(nj)],
         "    }",
+        "    if (status_out)",
+        "        for (int i = 0; i < m; i++)",
+        "            status_out[i] = (signed char)ST[i];",
         "}",
         "",
+        "static void solve_block(int m, const double *restrict pose, const double *restrict par,",
+        "                        int mode, int limits, double *restrict q_out,",
+        "                        signed char *restrict status_out, double *restrict jac_out,",
+        "                        int stream, int public)",
+        "{",
+        *prelude,
+        f"    double R[{max(nsteps, 1)}][BF_BLOCK];",
+        "    (void)mode;",
+        *steps_of_mode,
+        f"    const double *roots[{max(nsteps, 1)}] = {{"
+        + ", ".join(f"R[{k}]" for k in range(max(nsteps, 1))) + "};",
+        f"    block_tail(m, P, {''.join(f'{x}, ' for x in Fp)}S, roots, ST, FL, par, limits, "
+        f"q_out, {nj}, status_out,",
+        "               jac_out, stream, public);",
+        "}",
+        "",
+        *_solve_all(steps, prelude, npose, nj, npar, S, par, Fp, call),
         "/* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x",
         " * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order);",
         " * public: the angle joints (JOINT_ANGLES) as angles, else as tan-half-angles */",
@@ -269,11 +327,134 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "}",
         "",
         *_scan_entry(npose, nj, npar),
+        *_part_end(),
     ]
     if jac.outputs != 2 * nj + nj_entries:
         raise ValueError(f"{name}: the Jacobian kernel has {jac.outputs} outputs, expected "
                          f"{2 * nj + nj_entries}")
-    return "\n".join(lines + body) + "\n"
+    return "\n".join(lines + jac_block + body) + "\n"
+
+
+# the largest tree of roots solve_all_block keeps on the stack (bytes); a mechanism with more
+# has no bonered_solve_all, and ik_all on the fast path then solves mode by mode
+SOLVE_ALL_MAX_BYTES = 1 << 18
+
+
+def _solve_all(steps: Sequence[tuple[int, Kernel, int | None]], prelude: list[str],
+               npose: int, nj: int,
+               npar: int, S: Sequence[str], par: Sequence[str], Fp: Sequence[str],
+               call) -> list[str]:
+    """``bonered_solve_all``: every working mode's joints (``ik_all``), each IK step
+    evaluated once per choice of the roots of the quadratic steps before it and both roots
+    of a quadratic from one set of coefficients (a Stewart platform's 64 modes: 63
+    evaluations of its six step kernels instead of 384, the Study map once), then
+    ``block_tail`` for each mode: the numbers ``bonered_solve`` gives mode by mode (the
+    same kernels and root rules on the same values), as
+    :func:`bonered_alg.runtime.backsubstitution.backsubstitute_modes` does in numpy.
+
+    The roots are kept per branch: step ``k``'s branch index has one bit per quadratic step
+    up to ``k``, the earliest the most significant, and is the prefix of step ``k + 1``."""
+    nsteps = len(steps)
+    quad = [degree == 2 for degree, _, _ in steps]
+    before = [sum(quad[:k]) for k in range(nsteps)]
+    after = [before[k] + quad[k] for k in range(nsteps)]
+    modes = 2 ** sum(quad)
+    if not nsteps or sum(2 ** a for a in after) * 64 * 16 > SOLVE_ALL_MAX_BYTES:
+        return []
+    if sorted(bit for (_, _, bit), q in zip(steps, quad) if q) != list(range(sum(quad))):
+        raise ValueError("the quadratic steps' mode bits are not 0 .. n - 1")
+    body = [
+        "static void solve_all_block(int m, const double *restrict pose,",
+        "                            const double *restrict par, int limits,",
+        "                            double *restrict q_out, int public)",
+        "{",
+        *prelude,
+    ]
+    for k in range(nsteps):
+        nb = 2 ** after[k]
+        body.append(f"    double T{k}[{nb}][BF_BLOCK];")
+        body.append(f"    int TS{k}[{nb}][BF_BLOCK], TF{k}[{nb}][BF_BLOCK];")
+    steps_lines = []
+    for k, (degree, kern, _) in enumerate(steps):
+        earlier = [f"T{j}[p >> {before[k] - after[j]}][i]" for j in range(k)]
+        prev = ("ST[i]", "FL[i]") if k == 0 else (f"TS{k - 1}[p][i]", f"TF{k - 1}[p][i]")
+        steps_lines += [
+            f"    for (int p = 0; p < {2 ** before[k]}; p++) {{",
+            "        for (int i = 0; i < m; i++) {",
+            "            double c[3];",
+            f"            int status = {prev[0]}, failed = {prev[1]};",
+            f"            {call(kern, list(S) + earlier + list(par), 'c')}",
+        ]
+        if degree == 1:
+            steps_lines += [
+                f"            T{k}[p][i] = bf_linear(c[1], c[2], &status, &failed);",
+                f"            TS{k}[p][i] = status;",
+                f"            TF{k}[p][i] = failed;",
+            ]
+        else:
+            for minus in (0, 1):
+                b = f"2 * p + {minus}"
+                steps_lines += [
+                    f"            int s{minus} = status, f{minus} = failed;",
+                    f"            T{k}[{b}][i] = bf_quadratic(c[0], c[1], c[2], {minus}, "
+                    f"&s{minus}, &f{minus});",
+                    f"            TS{k}[{b}][i] = s{minus};",
+                    f"            TF{k}[{b}][i] = f{minus};",
+                ]
+        steps_lines += ["        }", "    }"]
+    table = []
+    for mode in range(modes):
+        branch, row = 0, []
+        for degree, _, bit in steps:
+            if degree == 2:
+                branch = 2 * branch + ((mode >> bit) & 1)
+            row.append(branch)
+        table.append("{" + ", ".join(map(str, row)) + "}")
+    last = nsteps - 1
+    return [
+        *body,
+        *steps_lines,
+        "    /* each mode's branch of each step */",
+        f"    static const int branch[{modes}][{nsteps}] = {{",
+        *[f"        {row}," for row in table],
+        "    };",
+        f"    for (int mode = 0; mode < {modes}; mode++) {{",
+        "        const double *roots[] = {"
+        + ", ".join(f"T{k}[branch[mode][{k}]]" for k in range(nsteps)) + "};",
+        f"        int b = branch[mode][{last}];",
+        f"        block_tail(m, P, {''.join(f'{x}, ' for x in Fp)}S, roots, TS{last}[b], "
+        f"TF{last}[b], par, limits,",
+        f"                   q_out + mode * {nj}, {modes * nj}, 0, 0, 0, public);",
+        "    }",
+        "}",
+        "",
+        f"/* n poses (row-major, n x len(POSE)); q (n x {modes} x len(JOINTS)): the joints of",
+        " * every working mode, the numbers bonered_solve gives mode by mode; par and public",
+        " * as there */",
+        "void bonered_solve_all(long n, const double *pose, const double *par_in, int limits,",
+        "                       double *q, int public)",
+        "{",
+        f"    double par[{max(npar, 1)}];",
+        f"    for (int k = 0; k < {npar}; k++)",
+        "        par[k] = par_in[k];",
+        "    for (long lo = 0; lo < n; lo += BF_BLOCK) {",
+        "        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;",
+        f"        solve_all_block(m, pose + lo * {npose}, par, limits, q + lo * {modes * nj},"
+        " public);",
+        "    }",
+        "}",
+        "",
+    ]
+
+
+def _part_begin(part: int) -> list[str]:
+    """The opening guard of the code of translation unit ``part`` (BF_PART, set by
+    :mod:`bonered_alg.runtime.compiled`; undefined, the file is one unit)."""
+    return [f"#if !defined(BF_PART) || BF_PART == {part}"]
+
+
+def _part_end() -> list[str]:
+    return ["#endif"]
 
 
 def _scan_entry(npose: int, nj: int, npar: int) -> list[str]:

@@ -95,9 +95,8 @@ def _step_root(degree, a, b, c, minus, dest):
     if numpy.ndim(b) == 0 and b == 0.0:
         disc = 0.0 - 4.0 * a * c
         ssq = numpy.sqrt(disc)  # NaN where negative: no real root
-        if minus:
-            ssq = -ssq  # (a new value: a single pose's sqrt is a numpy scalar)
-        numpy.divide(ssq, 2.0 * a, out=dest)
+        # -sqrt / 2A is sqrt / -2A: IEEE negation and division are sign-symmetric
+        numpy.divide(ssq, -2.0 * a if minus else 2.0 * a, out=dest)
         return ("pure", disc)
     bb = b * b
     disc = bb - 4.0 * a * c
@@ -108,12 +107,17 @@ def _step_root(degree, a, b, c, minus, dest):
     # s = |B| + sqrt(disc) never cancels: the root with +sqrt is s / 2A where B <= 0 and
     # 2C / -s where B > 0; the one with -sqrt, -s / 2A where B >= 0 and 2C / s where B < 0
     # -- the detailed form's (+-sqrt - B) / 2A and 2C / (-B -+ sqrt), the same numbers (a
-    # zero root may differ in its sign)
+    # zero root may differ in its sign).  Written as s / -2A for -s / 2A and -2C / s for
+    # 2C / -s (the same numbers: IEEE negation and division are sign-symmetric), the
+    # other branch's value copied over where it applies: two array passes fewer than a
+    # negation and numpy.where into a new array
     s = numpy.abs(b) + numpy.sqrt(ssq)
     if minus:
-        dest[...] = numpy.where(b < 0.0, (2.0 * c) / s, numpy.negative(s) / (2.0 * a))
+        numpy.divide(s, -2.0 * a, out=dest)
+        numpy.copyto(dest, (2.0 * c) / s, where=b < 0.0)
     else:
-        dest[...] = numpy.where(b > 0.0, (2.0 * c) / numpy.negative(s), s / (2.0 * a))
+        numpy.divide(s, 2.0 * a, out=dest)
+        numpy.copyto(dest, (-2.0 * c) / s, where=b > 0.0)
     return ("quadratic", disc, bb)
 
 

@@ -108,6 +108,48 @@ def threads() -> int:
                else (os.cpu_count() or 1))
 
 
+def _build(cc: str, flags: tuple[str, ...], source: Path, text: bytes, out: str) -> None:
+    """Compile ``source`` into the shared library ``out``.  A file written in translation
+    units (``BF_PART``, :mod:`bonered_alg.codegen.c_module`) is compiled one compiler
+    process per unit, all at once, then linked: the first call's cost is the largest
+    unit's, not the sum (tripod_planar on this project's 2-core machine: 2.7 s, not 5.2)."""
+    parts = [p for p in (1, 2) if b"BF_PART == %d" % p in text]
+
+    def failed(run) -> RuntimeError:
+        return RuntimeError(f"{cc} failed: {run.stderr.decode(errors='replace')[:2000]}")
+
+    if not parts:
+        run = subprocess.run([cc, *flags, "-I", str(HEADER_DIR), "-o", out, str(source),
+                              "-lm"], capture_output=True, timeout=300)
+        if run.returncode != 0:
+            raise failed(run)
+        return
+    compile_flags = [f for f in flags if f != "-shared"]
+    with tempfile.TemporaryDirectory(dir=Path(out).parent) as tmp:
+        objects = [str(Path(tmp) / f"part{p}.o") for p in parts]
+        procs = [subprocess.Popen([cc, *compile_flags, f"-DBF_PART={p}", "-I", str(HEADER_DIR),
+                                   "-c", "-o", o, str(source)],
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                 for p, o in zip(parts, objects)]
+        errors = []
+        for proc in procs:
+            try:
+                _, err = proc.communicate(timeout=300)
+            except subprocess.TimeoutExpired:
+                for other in procs:
+                    other.kill()
+                    other.wait()
+                raise
+            if proc.returncode != 0:
+                errors.append(err.decode(errors="replace"))
+        if errors:
+            raise RuntimeError(f"{cc} failed: {errors[0][:2000]}")
+        run = subprocess.run([cc, *flags, "-o", out, *objects, "-lm"], capture_output=True,
+                             timeout=300)
+        if run.returncode != 0:
+            raise failed(run)
+
+
 def _executor(n: int) -> ThreadPoolExecutor:
     global _pool
     with _lock:
@@ -175,11 +217,7 @@ class FastPath:
             fd, tmp = tempfile.mkstemp(suffix=".so", dir=lib.parent)
             os.close(fd)
             try:
-                run = subprocess.run([cc, *flags, "-I", str(HEADER_DIR), "-o", tmp,
-                                      str(self.source), "-lm"], capture_output=True,
-                                     timeout=300)
-                if run.returncode != 0:
-                    raise RuntimeError(f"{cc} failed: {run.stderr.decode(errors='replace')[:2000]}")
+                _build(cc, flags, self.source, text, tmp)
                 os.replace(tmp, lib)  # atomic: a concurrent build writes the same bytes
             finally:
                 if os.path.exists(tmp):
@@ -200,6 +238,11 @@ class FastPath:
         fn.restype = ctypes.c_long
         fn.argtypes = [ctypes.c_long, ctypes.c_long, ctypes.c_int, *[ctypes.c_void_p] * 5,
                        ctypes.c_int, *[ctypes.c_void_p] * 6]
+        if hasattr(handle, "bonered_solve_all"):  # not for a tree of roots too large
+            fn = handle.bonered_solve_all
+            fn.restype = None
+            fn.argtypes = [ctypes.c_long, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int,
+                           ctypes.c_void_p, ctypes.c_int]
         return handle
 
     # ------------------------------------------------------------ calling
@@ -234,6 +277,36 @@ class FastPath:
                 f.result()
         return (q.reshape(shape + (self.n_joints,)), status.reshape(shape),
                 None if jac is None else jac.reshape(shape + (self.n_joints, self.n_pose)))
+
+    def solve_all(self, pose: numpy.ndarray, par, modes: int, limits: bool,
+                  public: bool = True):
+        """Every working mode's joints of poses (..., n_pose): (..., modes, n_joints), the
+        numbers :meth:`solve` gives mode by mode, each IK step solved once per choice of
+        the earlier roots (``bonered_solve_all``); None where the library has no such
+        entry (the caller then solves mode by mode)."""
+        lib = self.library()
+        if not hasattr(lib, "bonered_solve_all"):
+            return None
+        shape = pose.shape[:-1]
+        n = int(numpy.prod(shape, dtype=numpy.int64))
+        flat = numpy.ascontiguousarray(pose, dtype=numpy.float64).reshape(n, self.n_pose)
+        parv = numpy.ascontiguousarray([float(v) for v in par], dtype=numpy.float64)
+        q = numpy.empty((n, modes, self.n_joints))
+
+        def run(lo: int, hi: int) -> None:
+            lib.bonered_solve_all(hi - lo, flat[lo:].ctypes.data, parv.ctypes.data,
+                                  int(bool(limits)), q[lo:].ctypes.data, int(bool(public)))
+
+        # a pose costs about ``modes`` poses of bonered_solve
+        k = min(threads(), max(1, n * modes // MIN_PER_THREAD))
+        if k == 1:
+            run(0, n)
+        else:
+            bounds = [n * i // k for i in range(k + 1)]
+            futures = [_executor(k).submit(run, bounds[i], bounds[i + 1]) for i in range(k)]
+            for f in futures:
+                f.result()
+        return q.reshape(shape + (modes, self.n_joints))
 
     def scan(self, start: int, stop: int, axes: list[tuple[int, float, float, int]],
              fixed: numpy.ndarray, modes, par, keep_mask: bool):

@@ -330,7 +330,11 @@ class Model:
 
     def ik_all(self, pose, limits=True, params=None, fast=None):
         pose, _, par, limits = self._ik_args("ik_all", pose, 0, limits, params)
-        if self._fast_path("ik_all", fast, par) is not None:
+        compiled = self._fast_path("ik_all", fast, par)
+        if compiled is not None:
+            q = compiled.solve_all(pose, par, self.modes, limits, True)
+            if q is not None:
+                return q
             return numpy.stack([self.solve(pose, m, par, False, limits, fast, "ik_all",
                                            True)[0] for m in range(self.modes)], axis=-2)
         return _chunked_into(pose, par, (((self.modes, len(self.joints)), float),),

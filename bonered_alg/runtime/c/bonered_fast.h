@@ -31,6 +31,14 @@
 #define BF_INLINE static inline
 #endif
 
+/* a function of the library that is no entry point (it may be defined in another of its
+ * translation units: bonered_alg.runtime.compiled builds a file in parts) */
+#if defined(__GNUC__)
+#define BF_INTERNAL __attribute__((visibility("hidden")))
+#else
+#define BF_INTERNAL
+#endif
+
 /* status s replaced by code where cond (0 or 1), without a branch */
 #define BF_SET(s, cond, code) ((s) + (cond) * ((code) - (s)))
 
