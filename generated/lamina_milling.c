@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0c4e402018328acefc5488e3dc85dbac0ed1c073a66eef57186d4e81ec12a447
+ * Derivation hash: df3f7c5ef8fe5cc40010346dac1995b6d7a894d4422d8ff5b86878d4666bbc67
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0c4e402018328acefc5488e3dc85dbac0ed1c073a66eef57186d4e81ec12a447";
+const char bonered_derivation_hash[] = "df3f7c5ef8fe5cc40010346dac1995b6d7a894d4422d8ff5b86878d4666bbc67";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -151,7 +151,7 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 #endif
 
 #if !defined(BF_PART) || BF_PART == 1
-static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,
                        const int *restrict FL_in, const double *restrict par,
                        int limits, double *restrict q_out, long q_stride,

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 402a15d689640bf632ecd64798d392550da6f96444aeb2289b712cdd0a1079ab
+ * Derivation hash: 8431e784aea921e4874b178ed8102be8e5cd695e170b743624d3b982ed2d9d5e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "402a15d689640bf632ecd64798d392550da6f96444aeb2289b712cdd0a1079ab";
+const char bonered_derivation_hash[] = "8431e784aea921e4874b178ed8102be8e5cd695e170b743624d3b982ed2d9d5e";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -431,7 +431,7 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 #endif
 
 #if !defined(BF_PART) || BF_PART == 1
-static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,
                        const int *restrict FL_in, const double *restrict par,
                        int limits, double *restrict q_out, long q_stride,

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7736fc3200798d3e945bca40c54010f1b345099adb031dd371d4254d7b2e07bd
+ * Derivation hash: b0a679477b00f8781d96d9caa7c3137f6f121be60eb1d65dd9e076b993115f05
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7736fc3200798d3e945bca40c54010f1b345099adb031dd371d4254d7b2e07bd";
+const char bonered_derivation_hash[] = "b0a679477b00f8781d96d9caa7c3137f6f121be60eb1d65dd9e076b993115f05";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -183,7 +183,7 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 #endif
 
 #if !defined(BF_PART) || BF_PART == 1
-static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,
                        const int *restrict FL_in, const double *restrict par,
                        int limits, double *restrict q_out, long q_stride,

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 038966cca62463f07e9c3d51638dfb23b7ef896438611da714567f8a41867840
+ * Derivation hash: 96ca6b2940d3f52cff96c2c76132ed17897a5a15ffab21053e5842cb87b47b57
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "038966cca62463f07e9c3d51638dfb23b7ef896438611da714567f8a41867840";
+const char bonered_derivation_hash[] = "96ca6b2940d3f52cff96c2c76132ed17897a5a15ffab21053e5842cb87b47b57";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -948,7 +948,7 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 #endif
 
 #if !defined(BF_PART) || BF_PART == 1
-static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,
                        const int *restrict FL_in, const double *restrict par,
                        int limits, double *restrict q_out, long q_stride,

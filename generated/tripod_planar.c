@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 544e0a81d63dba9b4725266c4a32c4d107bf190568e429ef24fa557040bfe61f
+ * Derivation hash: 971a7f5cdef3ccfeec89dc1b96f98927518e92c6eea148816aca5cf9b78ba938
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "544e0a81d63dba9b4725266c4a32c4d107bf190568e429ef24fa557040bfe61f";
+const char bonered_derivation_hash[] = "971a7f5cdef3ccfeec89dc1b96f98927518e92c6eea148816aca5cf9b78ba938";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -928,7 +928,7 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 #endif
 
 #if !defined(BF_PART) || BF_PART == 1
-static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,
                        const int *restrict FL_in, const double *restrict par,
                        int limits, double *restrict q_out, long q_stride,

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e6cd16bd884982015330d04464145affd1e92e1e070465989219c96ddd025252
+ * Derivation hash: 89219bf64e364c056d1334ab38942620761473577c6e6ebd5dd6d2f88185dc9f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e6cd16bd884982015330d04464145affd1e92e1e070465989219c96ddd025252";
+const char bonered_derivation_hash[] = "89219bf64e364c056d1334ab38942620761473577c6e6ebd5dd6d2f88185dc9f";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -346,7 +346,7 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 #endif
 
 #if !defined(BF_PART) || BF_PART == 1
-static void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
+BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,
                        const int *restrict FL_in, const double *restrict par,
                        int limits, double *restrict q_out, long q_stride,
