@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b0a679477b00f8781d96d9caa7c3137f6f121be60eb1d65dd9e076b993115f05
+ * Derivation hash: dc7399cf1891e8e98aeb70308faabd5ab0eadad6fd52440946b06697b2d94a49
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b0a679477b00f8781d96d9caa7c3137f6f121be60eb1d65dd9e076b993115f05";
+const char bonered_derivation_hash[] = "dc7399cf1891e8e98aeb70308faabd5ab0eadad6fd52440946b06697b2d94a49";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -300,68 +300,127 @@ static void solve_all_block(int m, const double *restrict pose,
         ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3])));
         FL[i] = 0;
     }
-    double T0[1][BF_BLOCK];
+    double T0[1][BF_BLOCK], C0[1][3][BF_BLOCK];
     int TS0[1][BF_BLOCK], TF0[1][BF_BLOCK];
-    double T1[2][BF_BLOCK];
+    double T1[2][BF_BLOCK], C1[1][3][BF_BLOCK];
     int TS1[2][BF_BLOCK], TF1[2][BF_BLOCK];
-    double T2[4][BF_BLOCK];
+    double T2[4][BF_BLOCK], C2[1][3][BF_BLOCK];
     int TS2[4][BF_BLOCK], TF2[4][BF_BLOCK];
-    double T3[8][BF_BLOCK];
+    double T3[8][BF_BLOCK], C3[1][3][BF_BLOCK];
     int TS3[8][BF_BLOCK], TF3[8][BF_BLOCK];
-    for (int p = 0; p < 1; p++) {
+    {
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
-            int status = ST[i], failed = FL[i];
             _step0_q5(S[0][i], S[1][i], S[2][i], S[3][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
-            T0[p][i] = bf_linear(c[1], c[2], &status, &failed);
+            C0[n][0][i] = c[0];
+            C0[n][1][i] = c[1];
+            C0[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[1] = {0};
+    for (int p = 0; p < 1; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
+            int status = ST[i], failed = FL[i];
+            double c0 = C0[n][0][i], c1 = C0[n][1][i], c2 = C0[n][2][i];
+            T0[p][i] = bf_linear(c1, c2, &status, &failed);
             TS0[p][i] = status;
             TF0[p][i] = failed;
         }
     }
-    for (int p = 0; p < 1; p++) {
+    }
+    {
+    static const int argb[1][1] = {{0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step1_q4(S[0][i], S[1][i], S[2][i], S[3][i], T0[argb[n][0]][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            C1[n][0][i] = c[0];
+            C1[n][1][i] = c[1];
+            C1[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[1] = {0};
+    for (int p = 0; p < 1; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS0[p][i], failed = TF0[p][i];
-            _step1_q4(S[0][i], S[1][i], S[2][i], S[3][i], T0[p >> 0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            double c0 = C1[n][0][i], c1 = C1[n][1][i], c2 = C1[n][2][i];
             int s0 = status, f0 = failed;
-            T1[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T1[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS1[2 * p + 0][i] = s0;
             TF1[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T1[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T1[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS1[2 * p + 1][i] = s1;
             TF1[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 2; p++) {
+    }
+    {
+    static const int argb[1][2] = {{0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step2_t1(S[0][i], S[1][i], S[2][i], S[3][i], T0[argb[n][0]][i], T1[argb[n][1]][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            C2[n][0][i] = c[0];
+            C2[n][1][i] = c[1];
+            C2[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[2] = {0, 0};
+    for (int p = 0; p < 2; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS1[p][i], failed = TF1[p][i];
-            _step2_t1(S[0][i], S[1][i], S[2][i], S[3][i], T0[p >> 1][i], T1[p >> 0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            double c0 = C2[n][0][i], c1 = C2[n][1][i], c2 = C2[n][2][i];
             int s0 = status, f0 = failed;
-            T2[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T2[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS2[2 * p + 0][i] = s0;
             TF2[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T2[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T2[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS2[2 * p + 1][i] = s1;
             TF2[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 4; p++) {
+    }
+    {
+    static const int argb[1][3] = {{0, 0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step3_w1(S[0][i], S[1][i], S[2][i], S[3][i], T0[argb[n][0]][i], T1[argb[n][1]][i], T2[argb[n][2]][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            C3[n][0][i] = c[0];
+            C3[n][1][i] = c[1];
+            C3[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[4] = {0, 0, 0, 0};
+    for (int p = 0; p < 4; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS2[p][i], failed = TF2[p][i];
-            _step3_w1(S[0][i], S[1][i], S[2][i], S[3][i], T0[p >> 2][i], T1[p >> 1][i], T2[p >> 0][i], par[0], par[1], par[2], par[3], par[4], par[5], par[6], par[7], par[8], par[9], par[10], c);
+            double c0 = C3[n][0][i], c1 = C3[n][1][i], c2 = C3[n][2][i];
             int s0 = status, f0 = failed;
-            T3[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T3[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS3[2 * p + 0][i] = s0;
             TF3[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T3[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T3[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS3[2 * p + 1][i] = s1;
             TF3[2 * p + 1][i] = f1;
         }
+    }
     }
     /* each mode's branch of each step */
     static const int branch[8][4] = {

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 96ca6b2940d3f52cff96c2c76132ed17897a5a15ffab21053e5842cb87b47b57
+ * Derivation hash: 5a80c2fa888abbfd176acb2f61e3e3196d22706509d957e2ef615816881271d7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "96ca6b2940d3f52cff96c2c76132ed17897a5a15ffab21053e5842cb87b47b57";
+const char bonered_derivation_hash[] = "5a80c2fa888abbfd176acb2f61e3e3196d22706509d957e2ef615816881271d7";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -1146,107 +1146,196 @@ static void solve_all_block(int m, const double *restrict pose,
         ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3]) & BF_FIN(s[4]) & BF_FIN(s[5]) & BF_FIN(s[6])));
         FL[i] = 0;
     }
-    double T0[2][BF_BLOCK];
+    double T0[2][BF_BLOCK], C0[1][3][BF_BLOCK];
     int TS0[2][BF_BLOCK], TF0[2][BF_BLOCK];
-    double T1[4][BF_BLOCK];
+    double T1[4][BF_BLOCK], C1[1][3][BF_BLOCK];
     int TS1[4][BF_BLOCK], TF1[4][BF_BLOCK];
-    double T2[8][BF_BLOCK];
+    double T2[8][BF_BLOCK], C2[1][3][BF_BLOCK];
     int TS2[8][BF_BLOCK], TF2[8][BF_BLOCK];
-    double T3[16][BF_BLOCK];
+    double T3[16][BF_BLOCK], C3[1][3][BF_BLOCK];
     int TS3[16][BF_BLOCK], TF3[16][BF_BLOCK];
-    double T4[32][BF_BLOCK];
+    double T4[32][BF_BLOCK], C4[1][3][BF_BLOCK];
     int TS4[32][BF_BLOCK], TF4[32][BF_BLOCK];
-    double T5[64][BF_BLOCK];
+    double T5[64][BF_BLOCK], C5[1][3][BF_BLOCK];
     int TS5[64][BF_BLOCK], TF5[64][BF_BLOCK];
-    for (int p = 0; p < 1; p++) {
+    {
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
-            int status = ST[i], failed = FL[i];
             _step0_q2(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], par[0], par[1], par[2], par[3], c);
+            C0[n][0][i] = c[0];
+            C0[n][1][i] = c[1];
+            C0[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[1] = {0};
+    for (int p = 0; p < 1; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
+            int status = ST[i], failed = FL[i];
+            double c0 = C0[n][0][i], c1 = C0[n][1][i], c2 = C0[n][2][i];
             int s0 = status, f0 = failed;
-            T0[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T0[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS0[2 * p + 0][i] = s0;
             TF0[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T0[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T0[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS0[2 * p + 1][i] = s1;
             TF0[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 2; p++) {
+    }
+    {
+    static const int argb[1][1] = {{0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step1_q5(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[argb[n][0]][i], par[0], par[1], par[2], par[3], c);
+            C1[n][0][i] = c[0];
+            C1[n][1][i] = c[1];
+            C1[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[2] = {0, 0};
+    for (int p = 0; p < 2; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS0[p][i], failed = TF0[p][i];
-            _step1_q5(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[p >> 0][i], par[0], par[1], par[2], par[3], c);
+            double c0 = C1[n][0][i], c1 = C1[n][1][i], c2 = C1[n][2][i];
             int s0 = status, f0 = failed;
-            T1[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T1[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS1[2 * p + 0][i] = s0;
             TF1[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T1[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T1[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS1[2 * p + 1][i] = s1;
             TF1[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 4; p++) {
+    }
+    {
+    static const int argb[1][2] = {{0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step2_q1(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[argb[n][0]][i], T1[argb[n][1]][i], par[0], par[1], par[2], par[3], c);
+            C2[n][0][i] = c[0];
+            C2[n][1][i] = c[1];
+            C2[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[4] = {0, 0, 0, 0};
+    for (int p = 0; p < 4; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS1[p][i], failed = TF1[p][i];
-            _step2_q1(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[p >> 1][i], T1[p >> 0][i], par[0], par[1], par[2], par[3], c);
+            double c0 = C2[n][0][i], c1 = C2[n][1][i], c2 = C2[n][2][i];
             int s0 = status, f0 = failed;
-            T2[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T2[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS2[2 * p + 0][i] = s0;
             TF2[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T2[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T2[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS2[2 * p + 1][i] = s1;
             TF2[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 8; p++) {
+    }
+    {
+    static const int argb[1][3] = {{0, 0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step3_q4(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[argb[n][0]][i], T1[argb[n][1]][i], T2[argb[n][2]][i], par[0], par[1], par[2], par[3], c);
+            C3[n][0][i] = c[0];
+            C3[n][1][i] = c[1];
+            C3[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    for (int p = 0; p < 8; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS2[p][i], failed = TF2[p][i];
-            _step3_q4(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[p >> 2][i], T1[p >> 1][i], T2[p >> 0][i], par[0], par[1], par[2], par[3], c);
+            double c0 = C3[n][0][i], c1 = C3[n][1][i], c2 = C3[n][2][i];
             int s0 = status, f0 = failed;
-            T3[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T3[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS3[2 * p + 0][i] = s0;
             TF3[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T3[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T3[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS3[2 * p + 1][i] = s1;
             TF3[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 16; p++) {
+    }
+    {
+    static const int argb[1][4] = {{0, 0, 0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step4_q3(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[argb[n][0]][i], T1[argb[n][1]][i], T2[argb[n][2]][i], T3[argb[n][3]][i], par[0], par[1], par[2], par[3], c);
+            C4[n][0][i] = c[0];
+            C4[n][1][i] = c[1];
+            C4[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[16] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (int p = 0; p < 16; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS3[p][i], failed = TF3[p][i];
-            _step4_q3(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[p >> 3][i], T1[p >> 2][i], T2[p >> 1][i], T3[p >> 0][i], par[0], par[1], par[2], par[3], c);
+            double c0 = C4[n][0][i], c1 = C4[n][1][i], c2 = C4[n][2][i];
             int s0 = status, f0 = failed;
-            T4[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T4[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS4[2 * p + 0][i] = s0;
             TF4[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T4[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T4[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS4[2 * p + 1][i] = s1;
             TF4[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 32; p++) {
+    }
+    {
+    static const int argb[1][5] = {{0, 0, 0, 0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step5_q6(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[argb[n][0]][i], T1[argb[n][1]][i], T2[argb[n][2]][i], T3[argb[n][3]][i], T4[argb[n][4]][i], par[0], par[1], par[2], par[3], c);
+            C5[n][0][i] = c[0];
+            C5[n][1][i] = c[1];
+            C5[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[32] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (int p = 0; p < 32; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS4[p][i], failed = TF4[p][i];
-            _step5_q6(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], T0[p >> 4][i], T1[p >> 3][i], T2[p >> 2][i], T3[p >> 1][i], T4[p >> 0][i], par[0], par[1], par[2], par[3], c);
+            double c0 = C5[n][0][i], c1 = C5[n][1][i], c2 = C5[n][2][i];
             int s0 = status, f0 = failed;
-            T5[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T5[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS5[2 * p + 0][i] = s0;
             TF5[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T5[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T5[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS5[2 * p + 1][i] = s1;
             TF5[2 * p + 1][i] = f1;
         }
+    }
     }
     /* each mode's branch of each step */
     static const int branch[64][6] = {

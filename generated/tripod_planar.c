@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 971a7f5cdef3ccfeec89dc1b96f98927518e92c6eea148816aca5cf9b78ba938
+ * Derivation hash: 19a998344927fd5b6a77fd484dfea68e9e965acfd7bef2b9d6bfd3b85a6727cb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "971a7f5cdef3ccfeec89dc1b96f98927518e92c6eea148816aca5cf9b78ba938";
+const char bonered_derivation_hash[] = "19a998344927fd5b6a77fd484dfea68e9e965acfd7bef2b9d6bfd3b85a6727cb";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -1135,92 +1135,181 @@ static void solve_all_block(int m, const double *restrict pose,
         ST[i] = BF_INVALID_INPUT * (1 - (BF_FIN(s[0]) & BF_FIN(s[1]) & BF_FIN(s[2]) & BF_FIN(s[3]) & BF_FIN(s[4]) & BF_FIN(s[5]) & BF_FIN(s[6]) & BF_FIN(s[7]) & BF_FIN(s[8]) & BF_FIN(s[9])));
         FL[i] = 0;
     }
-    double T0[1][BF_BLOCK];
+    double T0[1][BF_BLOCK], C0[1][3][BF_BLOCK];
     int TS0[1][BF_BLOCK], TF0[1][BF_BLOCK];
-    double T1[1][BF_BLOCK];
+    double T1[1][BF_BLOCK], C1[1][3][BF_BLOCK];
     int TS1[1][BF_BLOCK], TF1[1][BF_BLOCK];
-    double T2[1][BF_BLOCK];
+    double T2[1][BF_BLOCK], C2[1][3][BF_BLOCK];
     int TS2[1][BF_BLOCK], TF2[1][BF_BLOCK];
-    double T3[2][BF_BLOCK];
+    double T3[2][BF_BLOCK], C3[1][3][BF_BLOCK];
     int TS3[2][BF_BLOCK], TF3[2][BF_BLOCK];
-    double T4[4][BF_BLOCK];
+    double T4[4][BF_BLOCK], C4[1][3][BF_BLOCK];
     int TS4[4][BF_BLOCK], TF4[4][BF_BLOCK];
-    double T5[8][BF_BLOCK];
+    double T5[8][BF_BLOCK], C5[1][3][BF_BLOCK];
     int TS5[8][BF_BLOCK], TF5[8][BF_BLOCK];
-    for (int p = 0; p < 1; p++) {
+    {
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
-            int status = ST[i], failed = FL[i];
             _step0_q4(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], par[0], par[1], par[2], c);
-            T0[p][i] = bf_linear(c[1], c[2], &status, &failed);
+            C0[n][0][i] = c[0];
+            C0[n][1][i] = c[1];
+            C0[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[1] = {0};
+    for (int p = 0; p < 1; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
+            int status = ST[i], failed = FL[i];
+            double c0 = C0[n][0][i], c1 = C0[n][1][i], c2 = C0[n][2][i];
+            T0[p][i] = bf_linear(c1, c2, &status, &failed);
             TS0[p][i] = status;
             TF0[p][i] = failed;
         }
     }
-    for (int p = 0; p < 1; p++) {
+    }
+    {
+    static const int argb[1][1] = {{0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step1_q5(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[argb[n][0]][i], par[0], par[1], par[2], c);
+            C1[n][0][i] = c[0];
+            C1[n][1][i] = c[1];
+            C1[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[1] = {0};
+    for (int p = 0; p < 1; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS0[p][i], failed = TF0[p][i];
-            _step1_q5(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 0][i], par[0], par[1], par[2], c);
-            T1[p][i] = bf_linear(c[1], c[2], &status, &failed);
+            double c0 = C1[n][0][i], c1 = C1[n][1][i], c2 = C1[n][2][i];
+            T1[p][i] = bf_linear(c1, c2, &status, &failed);
             TS1[p][i] = status;
             TF1[p][i] = failed;
         }
     }
-    for (int p = 0; p < 1; p++) {
+    }
+    {
+    static const int argb[1][2] = {{0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step2_q6(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[argb[n][0]][i], T1[argb[n][1]][i], par[0], par[1], par[2], c);
+            C2[n][0][i] = c[0];
+            C2[n][1][i] = c[1];
+            C2[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[1] = {0};
+    for (int p = 0; p < 1; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS1[p][i], failed = TF1[p][i];
-            _step2_q6(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 0][i], T1[p >> 0][i], par[0], par[1], par[2], c);
-            T2[p][i] = bf_linear(c[1], c[2], &status, &failed);
+            double c0 = C2[n][0][i], c1 = C2[n][1][i], c2 = C2[n][2][i];
+            T2[p][i] = bf_linear(c1, c2, &status, &failed);
             TS2[p][i] = status;
             TF2[p][i] = failed;
         }
     }
-    for (int p = 0; p < 1; p++) {
+    }
+    {
+    static const int argb[1][3] = {{0, 0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step3_q2(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[argb[n][0]][i], T1[argb[n][1]][i], T2[argb[n][2]][i], par[0], par[1], par[2], c);
+            C3[n][0][i] = c[0];
+            C3[n][1][i] = c[1];
+            C3[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[1] = {0};
+    for (int p = 0; p < 1; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS2[p][i], failed = TF2[p][i];
-            _step3_q2(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 0][i], T1[p >> 0][i], T2[p >> 0][i], par[0], par[1], par[2], c);
+            double c0 = C3[n][0][i], c1 = C3[n][1][i], c2 = C3[n][2][i];
             int s0 = status, f0 = failed;
-            T3[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T3[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS3[2 * p + 0][i] = s0;
             TF3[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T3[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T3[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS3[2 * p + 1][i] = s1;
             TF3[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 2; p++) {
+    }
+    {
+    static const int argb[1][4] = {{0, 0, 0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step4_q1(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[argb[n][0]][i], T1[argb[n][1]][i], T2[argb[n][2]][i], T3[argb[n][3]][i], par[0], par[1], par[2], c);
+            C4[n][0][i] = c[0];
+            C4[n][1][i] = c[1];
+            C4[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[2] = {0, 0};
+    for (int p = 0; p < 2; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS3[p][i], failed = TF3[p][i];
-            _step4_q1(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 1][i], T1[p >> 1][i], T2[p >> 1][i], T3[p >> 0][i], par[0], par[1], par[2], c);
+            double c0 = C4[n][0][i], c1 = C4[n][1][i], c2 = C4[n][2][i];
             int s0 = status, f0 = failed;
-            T4[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T4[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS4[2 * p + 0][i] = s0;
             TF4[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T4[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T4[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS4[2 * p + 1][i] = s1;
             TF4[2 * p + 1][i] = f1;
         }
     }
-    for (int p = 0; p < 4; p++) {
+    }
+    {
+    static const int argb[1][5] = {{0, 0, 0, 0, 0}};
+    for (int n = 0; n < 1; n++) {
         for (int i = 0; i < m; i++) {
             double c[3];
+            _step5_q3(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[argb[n][0]][i], T1[argb[n][1]][i], T2[argb[n][2]][i], T3[argb[n][3]][i], T4[argb[n][4]][i], par[0], par[1], par[2], c);
+            C5[n][0][i] = c[0];
+            C5[n][1][i] = c[1];
+            C5[n][2][i] = c[2];
+        }
+    }
+    }
+    {
+    static const int cidx[4] = {0, 0, 0, 0};
+    for (int p = 0; p < 4; p++) {
+        const int n = cidx[p];
+        for (int i = 0; i < m; i++) {
             int status = TS4[p][i], failed = TF4[p][i];
-            _step5_q3(S[0][i], S[1][i], S[2][i], S[3][i], S[4][i], S[5][i], S[6][i], S[7][i], S[8][i], S[9][i], T0[p >> 2][i], T1[p >> 2][i], T2[p >> 2][i], T3[p >> 1][i], T4[p >> 0][i], par[0], par[1], par[2], c);
+            double c0 = C5[n][0][i], c1 = C5[n][1][i], c2 = C5[n][2][i];
             int s0 = status, f0 = failed;
-            T5[2 * p + 0][i] = bf_quadratic(c[0], c[1], c[2], 0, &s0, &f0);
+            T5[2 * p + 0][i] = bf_quadratic(c0, c1, c2, 0, &s0, &f0);
             TS5[2 * p + 0][i] = s0;
             TF5[2 * p + 0][i] = f0;
             int s1 = status, f1 = failed;
-            T5[2 * p + 1][i] = bf_quadratic(c[0], c[1], c[2], 1, &s1, &f1);
+            T5[2 * p + 1][i] = bf_quadratic(c0, c1, c2, 1, &s1, &f1);
             TS5[2 * p + 1][i] = s1;
             TF5[2 * p + 1][i] = f1;
         }
+    }
     }
     /* each mode's branch of each step */
     static const int branch[8][6] = {

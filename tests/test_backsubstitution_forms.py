@@ -124,13 +124,28 @@ def test_every_mode_at_once_as_mode_by_mode():
     reach every failure, with leading axes and without."""
     inputs = np.array([[2.0, 8.0], [0.125, 0.5], [-1.0, 4.0], [1.0, 0.0], [1.0, 1.0],
                        [0.25, 0.25], [0.0, 1.0], [np.nan, 1.0], [1.0, -1.0]])
+    calls = []
+
+    def independent(x, y, q, *par):  # reads no earlier root: evaluated once for 4 modes
+        calls.append(1)
+        return 1.0, y, -x
+
+    steps_free = ((2, _pure, 0), (2, independent, 1), (1, _linear, None))
     for x in (inputs, inputs[1]):
-        every = dict(backsubstitute_modes(x, STEPS, (2, 0, 1), 3, range(4), []))
-        assert sorted(every) == [0, 1, 2, 3]
-        for mode, q in every.items():
-            lean = backsubstitute_lean(x, STEPS, (2, 0, 1), 3, mode, [])[0]
-            assert q.shape == lean.shape
-            assert np.array_equal(q, lean, equal_nan=True)
+        # every earlier step read (uses None), and each step's true inputs: STEPS's
+        # _general reads q (step 0) and _linear p (step 1); ``independent`` reads nothing
+        for steps, uses in ((STEPS, None), (STEPS, ((), (0,), (1,))),
+                            (steps_free, ((), (), (1,)))):
+            calls.clear()
+            every = dict(backsubstitute_modes(x, steps, (2, 0, 1), 3, range(4), [], uses))
+            evaluated = len(calls)
+            assert sorted(every) == [0, 1, 2, 3]
+            for mode, q in every.items():
+                lean = backsubstitute_lean(x, steps, (2, 0, 1), 3, mode, [])[0]
+                assert q.shape == lean.shape
+                assert np.array_equal(q, lean, equal_nan=True)
+            if steps is steps_free:
+                assert evaluated == 1  # not once per root of the step before
 
 
 @pytest.mark.parametrize("name", sorted(MECHANISMS))
@@ -152,3 +167,36 @@ def test_ik_all_is_ik_mode_by_mode(name):
         assert np.isfinite(every).any()  # some poses are reached
     single = m.ik_all(poses[0], fast=False)
     assert np.array_equal(single, every[0], equal_nan=True)
+
+
+@pytest.mark.parametrize("name", sorted(MECHANISMS))
+def test_step_uses_are_the_roots_each_kernel_reads(name):
+    """STEP_USES-style metadata (Model.step_uses, from the free symbols of each step's
+    coefficients) lets ik_all evaluate a step once per choice of the roots it reads: a
+    kernel's coefficients must not move when any other earlier root does, and must move
+    when one it is said to read does."""
+    m = importlib.import_module(f"bonered_alg.generated.{name}")
+    model = m._MODEL
+    assert len(model.step_uses) == len(model.steps)
+    rng = np.random.default_rng(3)
+    home = np.array(m.HOME) if getattr(m, "HOME", None) else np.zeros(len(m.POSE))
+    scale = np.array([10.0 if u == "mm" else 0.1 for u in m.POSE_UNITS])
+    poses = home + rng.uniform(-1.0, 1.0, (50, len(m.POSE))) * scale
+    par = [m.PARAMETERS[k] for k in m.PARAMETERS]
+    study = stacked(model.study_values(poses, par), poses.shape[:-1])
+    cols = [np.ascontiguousarray(study[..., i]) for i in range(study.shape[-1])]
+    roots = [rng.uniform(0.5, 2.0, len(poses)) for _ in model.steps]
+
+    def coefficients(kern, earlier):
+        return np.array([np.broadcast_to(np.asarray(v, dtype=float), (len(poses),))
+                         for v in kern(*cols, *earlier, *par)])
+
+    for k, (_, kern, _) in enumerate(model.steps):
+        base = coefficients(kern, roots[:k])
+        moved = [r if j in model.step_uses[k] else r + rng.uniform(1.0, 2.0, len(poses))
+                 for j, r in enumerate(roots[:k])]
+        assert np.array_equal(coefficients(kern, moved), base), (k, model.step_uses[k])
+        for j in model.step_uses[k]:
+            other = list(roots[:k])
+            other[j] = other[j] + 1.0
+            assert not np.array_equal(coefficients(kern, other), base), (k, j)

@@ -39,6 +39,7 @@ def _call(k: Kernel, args: Sequence[str], out: str, expected: int) -> str:
 def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[str],
              study_pose: Sequence[str], joints: Sequence[str], parameters: Sequence[str],
              study: Kernel, steps: Sequence[tuple[int, Kernel, int | None]],
+             step_uses: Sequence[Sequence[int]] | None = None,
              solve_index: Sequence[int], pivots: Kernel | None, jac: Kernel,
              limits_kernel: Kernel | None, limits: Sequence[tuple[float, float, str]],
              angles: Sequence[int] = ()) -> str:
@@ -308,7 +309,7 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "               jac_out, stream, public);",
         "}",
         "",
-        *_solve_all(steps, prelude, npose, nj, npar, S, par, Fp, call),
+        *_solve_all(steps, prelude, npose, nj, npar, S, par, Fp, call, step_uses),
         "/* n poses (row-major, n x len(POSE)); q (n x len(JOINTS)), status (n), jac (n x",
         " * len(JOINTS) x len(POSE), or NULL); par: the geometric parameters (PARAMETERS order);",
         " * public: the angle joints (JOINT_ANGLES) as angles, else as tan-half-angles */",
@@ -345,26 +346,56 @@ SOLVE_ALL_MAX_BYTES = 1 << 18
 def _solve_all(steps: Sequence[tuple[int, Kernel, int | None]], prelude: list[str],
                npose: int, nj: int,
                npar: int, S: Sequence[str], par: Sequence[str], Fp: Sequence[str],
-               call) -> list[str]:
-    """``bonered_solve_all``: every working mode's joints (``ik_all``), each IK step
-    evaluated once per choice of the roots of the quadratic steps before it and both roots
-    of a quadratic from one set of coefficients (a Stewart platform's 64 modes: 63
-    evaluations of its six step kernels instead of 384, the Study map once), then
-    ``block_tail`` for each mode: the numbers ``bonered_solve`` gives mode by mode (the
-    same kernels and root rules on the same values), as
-    :func:`bonered_alg.runtime.backsubstitution.backsubstitute_modes` does in numpy.
+               call, uses: Sequence[Sequence[int]] | None = None) -> list[str]:
+    """``bonered_solve_all``: every working mode's joints (``ik_all``), each IK step's
+    coefficients evaluated once per choice of the roots its kernel reads (``uses``: per
+    step, the earlier steps whose unknowns its coefficients contain; None: every earlier
+    step) and both roots of a quadratic from one set of coefficients (a Stewart
+    platform's six legs read no other leg: six kernel evaluations for its 64 modes instead
+    of 384, the Study map once), then ``block_tail`` for each mode: the numbers
+    ``bonered_solve`` gives mode by mode (the same kernels and root rules on the same
+    values), as :func:`bonered_alg.runtime.backsubstitution.backsubstitute_modes` does in
+    numpy.
 
-    The roots are kept per branch: step ``k``'s branch index has one bit per quadratic step
-    up to ``k``, the earliest the most significant, and is the prefix of step ``k + 1``."""
+    The roots and their status are kept per branch: step ``k``'s branch index has one bit
+    per quadratic step up to ``k``, the earliest the most significant, and is the prefix
+    of step ``k + 1`` (the status of a branch is that of its whole chain of steps)."""
     nsteps = len(steps)
     quad = [degree == 2 for degree, _, _ in steps]
     before = [sum(quad[:k]) for k in range(nsteps)]
     after = [before[k] + quad[k] for k in range(nsteps)]
     modes = 2 ** sum(quad)
-    if not nsteps or sum(2 ** a for a in after) * 64 * 16 > SOLVE_ALL_MAX_BYTES:
+    if not nsteps:
         return []
     if sorted(bit for (_, _, bit), q in zip(steps, quad) if q) != list(range(sum(quad))):
         raise ValueError("the quadratic steps' mode bits are not 0 .. n - 1")
+    uses = [tuple(range(k)) for k in range(nsteps)] if uses is None else uses
+    # the mode bits each step's coefficients and root depend on
+    root_bits: list[list[int]] = []
+    coeff_bits: list[list[int]] = []
+    for k, (degree, _, bit) in enumerate(steps):
+        cb = sorted({b for j in uses[k] for b in root_bits[j]})
+        coeff_bits.append(cb)
+        root_bits.append(sorted(set(cb) | ({bit} if degree == 2 else set())))
+    quad_steps = [k for k in range(nsteps) if quad[k]]
+
+    def branch(mode: int, k: int) -> int:  # step k's branch index in working mode ``mode``
+        b = 0
+        for j in quad_steps:
+            if j <= k:
+                b = 2 * b + ((mode >> steps[j][2]) & 1)
+        return b
+
+    def mode_of_prefix(p: int, k: int) -> int:  # the mode bits prefix p of step k sets
+        return sum(((p >> (before[k] - 1 - i)) & 1) << steps[j][2]
+                   for i, j in enumerate(quad_steps) if j < k)
+
+    def assignment(n: int, bits: Sequence[int]) -> int:  # n's bits placed on ``bits``
+        return sum(((n >> i) & 1) << b for i, b in enumerate(bits))
+
+    ncoef = [2 ** len(cb) for cb in coeff_bits]
+    if (sum(2 ** a for a in after) * 16 + sum(ncoef) * 24) * 64 > SOLVE_ALL_MAX_BYTES:
+        return []
     body = [
         "static void solve_all_block(int m, const double *restrict pose,",
         "                            const double *restrict par, int limits,",
@@ -374,22 +405,47 @@ def _solve_all(steps: Sequence[tuple[int, Kernel, int | None]], prelude: list[st
     ]
     for k in range(nsteps):
         nb = 2 ** after[k]
-        body.append(f"    double T{k}[{nb}][BF_BLOCK];")
+        body.append(f"    double T{k}[{nb}][BF_BLOCK], C{k}[{ncoef[k]}][3][BF_BLOCK];")
         body.append(f"    int TS{k}[{nb}][BF_BLOCK], TF{k}[{nb}][BF_BLOCK];")
     steps_lines = []
     for k, (degree, kern, _) in enumerate(steps):
-        earlier = [f"T{j}[p >> {before[k] - after[j]}][i]" for j in range(k)]
-        prev = ("ST[i]", "FL[i]") if k == 0 else (f"TS{k - 1}[p][i]", f"TF{k - 1}[p][i]")
+        # the coefficients, once per choice of the roots the kernel reads; a root it does
+        # not read is passed at branch 0 of the bits the choice leaves free
+        args = [[branch(assignment(n, coeff_bits[k]), j) for j in range(k)]
+                for n in range(ncoef[k])]
+        earlier = [f"T{j}[argb[n][{j}]][i]" for j in range(k)]
         steps_lines += [
-            f"    for (int p = 0; p < {2 ** before[k]}; p++) {{",
+            "    {",
+            *([f"    static const int argb[{ncoef[k]}][{k}] = {{"
+               + ", ".join("{" + ", ".join(map(str, row)) + "}" for row in args) + "};"]
+              if k else []),
+            f"    for (int n = 0; n < {ncoef[k]}; n++) {{",
             "        for (int i = 0; i < m; i++) {",
             "            double c[3];",
-            f"            int status = {prev[0]}, failed = {prev[1]};",
             f"            {call(kern, list(S) + earlier + list(par), 'c')}",
+            f"            C{k}[n][0][i] = c[0];",
+            f"            C{k}[n][1][i] = c[1];",
+            f"            C{k}[n][2][i] = c[2];",
+            "        }",
+            "    }",
+            "    }",
+        ]
+        np_ = 2 ** before[k]
+        cidx = [sum(((mode_of_prefix(p, k) >> b) & 1) << i for i, b in enumerate(coeff_bits[k]))
+                for p in range(np_)]
+        prev = ("ST[i]", "FL[i]") if k == 0 else (f"TS{k - 1}[p][i]", f"TF{k - 1}[p][i]")
+        steps_lines += [
+            "    {",
+            f"    static const int cidx[{np_}] = {{{', '.join(map(str, cidx))}}};",
+            f"    for (int p = 0; p < {np_}; p++) {{",
+            "        const int n = cidx[p];",
+            "        for (int i = 0; i < m; i++) {",
+            f"            int status = {prev[0]}, failed = {prev[1]};",
+            f"            double c0 = C{k}[n][0][i], c1 = C{k}[n][1][i], c2 = C{k}[n][2][i];",
         ]
         if degree == 1:
             steps_lines += [
-                f"            T{k}[p][i] = bf_linear(c[1], c[2], &status, &failed);",
+                f"            T{k}[p][i] = bf_linear(c1, c2, &status, &failed);",
                 f"            TS{k}[p][i] = status;",
                 f"            TF{k}[p][i] = failed;",
             ]
@@ -398,20 +454,14 @@ def _solve_all(steps: Sequence[tuple[int, Kernel, int | None]], prelude: list[st
                 b = f"2 * p + {minus}"
                 steps_lines += [
                     f"            int s{minus} = status, f{minus} = failed;",
-                    f"            T{k}[{b}][i] = bf_quadratic(c[0], c[1], c[2], {minus}, "
+                    f"            T{k}[{b}][i] = bf_quadratic(c0, c1, c2, {minus}, "
                     f"&s{minus}, &f{minus});",
                     f"            TS{k}[{b}][i] = s{minus};",
                     f"            TF{k}[{b}][i] = f{minus};",
                 ]
-        steps_lines += ["        }", "    }"]
-    table = []
-    for mode in range(modes):
-        branch, row = 0, []
-        for degree, _, bit in steps:
-            if degree == 2:
-                branch = 2 * branch + ((mode >> bit) & 1)
-            row.append(branch)
-        table.append("{" + ", ".join(map(str, row)) + "}")
+        steps_lines += ["        }", "    }", "    }"]
+    table = ["{" + ", ".join(str(branch(mode, k)) for k in range(nsteps)) + "}"
+             for mode in range(modes)]
     last = nsteps - 1
     return [
         *body,

@@ -260,9 +260,12 @@ def _rps_with_constants(rps: RPSSystem, c: dict) -> RPSSystem:
 
 def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
                   par: Sequence[sp.Symbol], sub: dict, c: bool = False,
-                  compact: dict | None = None) -> tuple[list[Kernel], list[str], list]:
+                  compact: dict | None = None, uses: list | None = None
+                  ) -> tuple[list[Kernel], list[str], list]:
     """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows.
-    A step in ``compact`` (a distance leg's geometric form) is evaluated in that form."""
+    A step in ``compact`` (a distance leg's geometric form) is evaluated in that form.
+    ``uses`` (a list) receives, per step, the indices of the earlier steps whose unknowns
+    its coefficients contain (a kernel takes every earlier unknown as an argument)."""
     kernels, rows, mode_bits = [], [], []
     solved: list[sp.Symbol] = []
     bit = 0
@@ -271,6 +274,9 @@ def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symb
         form = (compact or {}).get(st.joint)
         if form is not None and st.degree == 2 and coeffs[1] == 0:
             coeffs = [form.scale * form.rotation, sp.Integer(0), -4 * form.scale * form.dual]
+        if uses is not None:
+            free = set().union(*(sp.sympify(e).free_symbols for e in coeffs))
+            uses.append(tuple(j for j, q in enumerate(solved) if q in free))
         kern = kernel(f"_{prefix}{k}_{st.joint}", [*inputs, *solved, *par], coeffs,
                       f"Coefficients (A, B, C) of the generator solved for {st.joint} "
                       f"(from {st.source}).", c=c, scalars=par)
@@ -308,8 +314,10 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     kernels = [kernel("_study", [*spec.pose, *par], [lean[y] for y in study],
                       "Study coordinates STUDY_POSE of the pose (POSE).", c=True,
                       scalars=par)]
+    step_uses: list = []
     step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {},
-                                                       c=True, compact=spec.compact)
+                                                       c=True, compact=spec.compact,
+                                                       uses=step_uses)
     kernels += step_kernels
     bit = len(mode_bits)
     fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
@@ -472,6 +480,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
                    for lim in spec.limits],
         "singularity_meanings": [(n, m) for n, _, m in spec.singularities],
         "kernels": kernels, "steps": _step_rows(steps_src), "fk_steps": _step_rows(fk_src),
+        "step_uses": tuple(step_uses),
         "singularity_kernels": sing_kernels, "singularity_matrices": sing_matrices,
         "pivot_steps": tuple(linear),
         "home": None if spec.home is None else tuple(float(v) for v in spec.home),
@@ -511,6 +520,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         parameters=[p.name for p in spec.parameters], study=by_name["_study"],
         steps=[(st.degree, k, b) for st, k, b in zip(
             spec.steps, step_kernels, _bits(spec.steps))],
+        step_uses=context["step_uses"],
         solve_index=context["solve_index"], pivots=by_name.get("_pivots"),
         jac=by_name["_jac"], limits_kernel=by_name.get("_limit_values"),
         limits=[(float(lim[2]), float(lim[3]), lim[4]) for lim in spec.limits],

@@ -121,37 +121,62 @@ def _step_root(degree, a, b, c, minus, dest):
     return ("quadratic", disc, bb)
 
 
-def backsubstitute_modes(inputs, steps, indices, n_out, modes, par):
+def backsubstitute_modes(inputs, steps, indices, n_out, modes, par, uses=None):
     """``backsubstitute_lean(inputs, ..., mode, par)[0]`` of every mode in ``modes``, the
-    same numbers, with each step solved once per choice of the roots before it: a step's
-    coefficients and both its roots are shared by every mode that agrees on the earlier
-    quadratic steps (a Stewart platform's 64 modes: 63 evaluations of its six step kernels
-    instead of 384, and the Study map once).  Yields ``(mode, q (..., n_out))`` in the
+    same numbers, with each step's coefficients evaluated once per choice of the roots its
+    kernel reads and both roots of a quadratic from one set of coefficients.  ``uses``: per
+    step, the indices of the earlier steps whose roots its coefficients contain (None: every
+    earlier step).  A Stewart platform's six legs read no other leg: six kernel
+    evaluations for its 64 modes (384 mode by mode; 63 when each step is taken to read
+    every earlier one) and the Study map once.  Yields ``(mode, q (..., n_out))`` in the
     order of ``modes``, each ``q`` assembled when it is asked for (the roots are what is
-    kept: a chunk of a Stewart platform's poses holds 126 root arrays, not 64 results)."""
+    kept, with their finiteness).
+
+    The numbers are the lean form's: a step's coefficients do not depend on the roots it
+    does not read, and a mode's joints are NaN wherever one of its roots is not finite,
+    which is the lean form's rule (its NaN roots also reach later kernels as inputs)."""
     shape = inputs.shape[:-1]
     cols = contiguous_columns(inputs)
-    # prefix of mode bits -> (roots so far, all finite so far)
-    level: dict[int, tuple[list, object]] = {0: ([], None)}
+    nsteps = len(steps)
+    uses = [tuple(range(k)) for k in range(nsteps)] if uses is None else uses
+    # the mode bits each step's coefficients and root depend on
+    coeff_bits: list[tuple[int, ...]] = []
+    root_bits: list[tuple[int, ...]] = []
+    for k, (degree, _, bit) in enumerate(steps):
+        cb = sorted({b for j in uses[k] for b in root_bits[j]})
+        coeff_bits.append(tuple(cb))
+        root_bits.append(tuple(sorted(set(cb) | ({bit} if degree == 2 else set()))))
+
+    def key(mode, bits):
+        return tuple((mode >> b) & 1 for b in bits)
+
+    def assignments(bits):
+        for n in range(2 ** len(bits)):
+            yield sum(((n >> i) & 1) << b for i, b in enumerate(bits))
+
+    # per step: {root key: (root, finite)}
+    roots: list[dict] = []
     with numpy.errstate(all="ignore"):
-        for degree, kern, bit in steps:
-            grown: dict[int, tuple[list, object]] = {}
-            for prefix, (solved, good) in level.items():
-                a, b, c = kern(*cols, *solved, *par)
-                signs = (0, 1) if degree == 2 else (0,)
-                for minus in signs:
+        for k, (degree, kern, bit) in enumerate(steps):
+            found: dict = {}
+            for partial in assignments(coeff_bits[k]):
+                # each earlier root at the bits this assignment sets (0 for the others: a
+                # root the kernel does not read may be any of its values)
+                args = [roots[j][key(partial, root_bits[j])][0] for j in range(k)]
+                a, b, c = kern(*cols, *args, *par)
+                for minus in ((0, 1) if degree == 2 else (0,)):
                     dest = numpy.empty(shape)
                     _step_root(degree, a, b, c, minus, dest)
-                    finite = numpy.isfinite(dest)
-                    key = prefix | (minus << bit) if degree == 2 else prefix
-                    grown[key] = (solved + [dest], finite if good is None else good & finite)
-            level = grown
-    mask = sum(1 << bit for degree, _, bit in steps if degree == 2)
+                    mode = partial | (minus << bit) if degree == 2 else partial
+                    found[key(mode, root_bits[k])] = (dest, numpy.isfinite(dest))
+            roots.append(found)
     for mode in modes:
-        roots, good = level[mode & mask]
         q = numpy.empty((n_out,) + shape)
-        for index, root in zip(indices, roots):
+        good = None
+        for k, index in enumerate(indices):
+            root, finite = roots[k][key(mode, root_bits[k])]
             q[index, ...] = root
+            good = finite if good is None else good & finite
         if good is not None and not good.all():
             q[:, ~good] = numpy.nan
         yield mode, numpy.moveaxis(q, 0, -1)

@@ -97,6 +97,9 @@ class Model:
     parameter_domains: Mapping[str, str] = field(default_factory=dict)
     # index in ``steps`` of each linear step whose pivot the ``pivots`` kernel returns
     pivot_steps: tuple[int, ...] = ()
+    # per step, the earlier steps whose unknowns its kernel's coefficients contain (empty:
+    # every earlier step, as a kernel's arguments say)
+    step_uses: tuple = ()
     # singularities that are the determinant of a matrix: name -> (kernel of its n*n
     # entries, row-major, in the Study coordinates and joints; n)
     singularity_matrices: Mapping[str, tuple] = field(default_factory=dict)
@@ -265,7 +268,7 @@ class Model:
             shared = self.pose_values(pose, par)
         study = self._study_columns(pose, par, shared)
         by_mode = backsubstitute_modes(study, self.steps, self.solve_index, len(self.joints),
-                                       range(self.modes), par)
+                                       range(self.modes), par, self.step_uses or None)
         for mode, q in by_mode:
             q, _ = self._checked(pose, study, q, None, par, False, limits, shared)
             self.publish(q)
