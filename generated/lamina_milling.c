@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1e768b79ec8421740c64f9f859052f825957565dfdbcfa19fe25549c6f3c3909
+ * Derivation hash: f921a94aa58051a471f37c6be77fa78efe304b7cd62167fbcc37e40d7c26785c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1e768b79ec8421740c64f9f859052f825957565dfdbcfa19fe25549c6f3c3909";
+const char bonered_derivation_hash[] = "f921a94aa58051a471f37c6be77fa78efe304b7cd62167fbcc37e40d7c26785c";
 int bonered_abi(void) { return 3; }
 #endif
 

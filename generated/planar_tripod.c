@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c1efa85a62e335165b22f3b920307862373b536192e708c49714642b94bde061
+ * Derivation hash: eeb97d81b0d6b8f6108a166b1b7ce0fd91ea2c39a0082cd2655e61e61836265c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c1efa85a62e335165b22f3b920307862373b536192e708c49714642b94bde061";
+const char bonered_derivation_hash[] = "eeb97d81b0d6b8f6108a166b1b7ce0fd91ea2c39a0082cd2655e61e61836265c";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dc7399cf1891e8e98aeb70308faabd5ab0eadad6fd52440946b06697b2d94a49
+ * Derivation hash: 2631508539a6e13100eba43cde0c19b9987295e0f8136fb686bad5a7208ad95d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "dc7399cf1891e8e98aeb70308faabd5ab0eadad6fd52440946b06697b2d94a49";
+const char bonered_derivation_hash[] = "2631508539a6e13100eba43cde0c19b9987295e0f8136fb686bad5a7208ad95d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e1e7d233267a369c844f1fc7e0e0a0624877e9669b6ba64e95285f85af07b015
+ * Derivation hash: 7980d6dc70230632c92837536777d623b2c319eeb53b9f429ac45c9493aea9d1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e1e7d233267a369c844f1fc7e0e0a0624877e9669b6ba64e95285f85af07b015";
+const char bonered_derivation_hash[] = "7980d6dc70230632c92837536777d623b2c319eeb53b9f429ac45c9493aea9d1";
 int bonered_abi(void) { return 3; }
 #endif
 

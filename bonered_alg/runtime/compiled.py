@@ -281,9 +281,9 @@ class FastPath:
     def solve_all(self, pose: numpy.ndarray, par, modes: int, limits: bool,
                   public: bool = True):
         """Every working mode's joints of poses (..., n_pose): (..., modes, n_joints), the
-        numbers :meth:`solve` gives mode by mode, each IK step solved once per choice of
-        the earlier roots (``bonered_solve_all``); None where the library has no such
-        entry (the caller then solves mode by mode)."""
+        numbers :meth:`solve` gives mode by mode, each IK step's coefficients evaluated
+        once per choice of the roots its kernel reads (``bonered_solve_all``); None where
+        the library has no such entry (the caller then solves mode by mode)."""
         lib = self.library()
         if not hasattr(lib, "bonered_solve_all"):
             return None
