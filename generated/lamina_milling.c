@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f921a94aa58051a471f37c6be77fa78efe304b7cd62167fbcc37e40d7c26785c
+ * Derivation hash: 4614e374e8b317a65176b8203584d74ff0dfe06bc8f88060fa2d801bfadec60d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f921a94aa58051a471f37c6be77fa78efe304b7cd62167fbcc37e40d7c26785c";
+const char bonered_derivation_hash[] = "4614e374e8b317a65176b8203584d74ff0dfe06bc8f88060fa2d801bfadec60d";
 int bonered_abi(void) { return 3; }
 #endif
 

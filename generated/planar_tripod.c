@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: eeb97d81b0d6b8f6108a166b1b7ce0fd91ea2c39a0082cd2655e61e61836265c
+ * Derivation hash: 9601b6e1e161209fc057317d2751b4d0081bc1208b91729b1e35ed56a433c7f7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "eeb97d81b0d6b8f6108a166b1b7ce0fd91ea2c39a0082cd2655e61e61836265c";
+const char bonered_derivation_hash[] = "9601b6e1e161209fc057317d2751b4d0081bc1208b91729b1e35ed56a433c7f7";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2631508539a6e13100eba43cde0c19b9987295e0f8136fb686bad5a7208ad95d
+ * Derivation hash: 23a9b670b6f044bff0d34c82e9fc74b9cb5700434047374842faeddac91fe211
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2631508539a6e13100eba43cde0c19b9987295e0f8136fb686bad5a7208ad95d";
+const char bonered_derivation_hash[] = "23a9b670b6f044bff0d34c82e9fc74b9cb5700434047374842faeddac91fe211";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1988fa0e1dfdf0ac4a88ab6b47a6a993962bf66937e9030de6978c23099ebbd7
+ * Derivation hash: c6fb918c10ebe867a827e5c903111d980c95afe4fe6e236d44d0330409e9cd09
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1988fa0e1dfdf0ac4a88ab6b47a6a993962bf66937e9030de6978c23099ebbd7";
+const char bonered_derivation_hash[] = "c6fb918c10ebe867a827e5c903111d980c95afe4fe6e236d44d0330409e9cd09";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 51b26808edfe83da56feac9f1f1a7baad3b7fa9dd42bc4c6b59153a3835ce906
+ * Derivation hash: 4b48cd5f25241e710cfb9709a2c56b2ed876c100d14559ac299cf82251500980
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "51b26808edfe83da56feac9f1f1a7baad3b7fa9dd42bc4c6b59153a3835ce906";
+const char bonered_derivation_hash[] = "4b48cd5f25241e710cfb9709a2c56b2ed876c100d14559ac299cf82251500980";
 int bonered_abi(void) { return 3; }
 #endif
 

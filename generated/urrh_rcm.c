@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7980d6dc70230632c92837536777d623b2c319eeb53b9f429ac45c9493aea9d1
+ * Derivation hash: f2d91c41282019aff4defab2dedf85530eb621bc9a5cbb0f1f15e94de99eaa5b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7980d6dc70230632c92837536777d623b2c319eeb53b9f429ac45c9493aea9d1";
+const char bonered_derivation_hash[] = "f2d91c41282019aff4defab2dedf85530eb621bc9a5cbb0f1f15e94de99eaa5b";
 int bonered_abi(void) { return 3; }
 #endif
 

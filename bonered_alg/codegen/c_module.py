@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
+from ..runtime.backsubstitution import step_mode_bits
 from .kernels import Kernel, c_function, c_values, shareable_functions, shared_functions
 
 # the C entry point's contract with bonered_alg.runtime.compiled
@@ -229,8 +230,7 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "int m", "double (*restrict P)[BF_BLOCK]", *shared_param,
         "double (*restrict Q)[BF_BLOCK]", "const double *restrict par", "int *restrict ST",
         "double *restrict jac_out", "int stream", "int public"])
-    jac_args = ", ".join(["m", "P", *(["F"] if shared else []), "Q", "par", "ST", "jac_out",
-                          "stream", "public"])
+    jac_args = ", ".join(["m", "P", *Fp, "Q", "par", "ST", "jac_out", "stream", "public"])
     jac_prototype = f"BF_INTERNAL void bf_jacobian_block({jac_params})"
     jac_block = [
         f"{jac_prototype};",
@@ -369,14 +369,7 @@ def _solve_all(steps: Sequence[tuple[int, Kernel, int | None]], prelude: list[st
         return []
     if sorted(bit for (_, _, bit), q in zip(steps, quad) if q) != list(range(sum(quad))):
         raise ValueError("the quadratic steps' mode bits are not 0 .. n - 1")
-    uses = [tuple(range(k)) for k in range(nsteps)] if uses is None else uses
-    # the mode bits each step's coefficients and root depend on
-    root_bits: list[list[int]] = []
-    coeff_bits: list[list[int]] = []
-    for k, (degree, _, bit) in enumerate(steps):
-        cb = sorted({b for j in uses[k] for b in root_bits[j]})
-        coeff_bits.append(cb)
-        root_bits.append(sorted(set(cb) | ({bit} if degree == 2 else set())))
+    coeff_bits, _ = step_mode_bits(steps, uses)  # the mode bits each step's coefficients read
     quad_steps = [k for k in range(nsteps) if quad[k]]
 
     def branch(mode: int, k: int) -> int:  # step k's branch index in working mode ``mode``

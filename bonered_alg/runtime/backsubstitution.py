@@ -121,6 +121,22 @@ def _step_root(degree, a, b, c, minus, dest):
     return ("quadratic", disc, bb)
 
 
+def step_mode_bits(steps, uses=None):
+    """``(coefficient bits, root bits)``: per step, the sorted mode bits its coefficients
+    depend on (those of the roots it reads, ``uses``: per step, the indices of the earlier
+    steps whose roots its coefficients contain; None: every earlier step) and those its
+    root depends on (these and its own bit, for a quadratic).  The rule behind
+    :func:`backsubstitute_modes` and the compiled ``bonered_solve_all``."""
+    uses = [tuple(range(k)) for k in range(len(steps))] if uses is None else uses
+    coeff_bits: list[tuple[int, ...]] = []
+    root_bits: list[tuple[int, ...]] = []
+    for k, (degree, _, bit) in enumerate(steps):
+        cb = sorted({b for j in uses[k] for b in root_bits[j]})
+        coeff_bits.append(tuple(cb))
+        root_bits.append(tuple(sorted(set(cb) | ({bit} if degree == 2 else set()))))
+    return coeff_bits, root_bits
+
+
 def backsubstitute_modes(inputs, steps, indices, n_out, modes, par, uses=None):
     """``backsubstitute_lean(inputs, ..., mode, par)[0]`` of every mode in ``modes``, the
     same numbers, with each step's coefficients evaluated once per choice of the roots its
@@ -137,15 +153,7 @@ def backsubstitute_modes(inputs, steps, indices, n_out, modes, par, uses=None):
     which is the lean form's rule (its NaN roots also reach later kernels as inputs)."""
     shape = inputs.shape[:-1]
     cols = contiguous_columns(inputs)
-    nsteps = len(steps)
-    uses = [tuple(range(k)) for k in range(nsteps)] if uses is None else uses
-    # the mode bits each step's coefficients and root depend on
-    coeff_bits: list[tuple[int, ...]] = []
-    root_bits: list[tuple[int, ...]] = []
-    for k, (degree, _, bit) in enumerate(steps):
-        cb = sorted({b for j in uses[k] for b in root_bits[j]})
-        coeff_bits.append(tuple(cb))
-        root_bits.append(tuple(sorted(set(cb) | ({bit} if degree == 2 else set()))))
+    coeff_bits, root_bits = step_mode_bits(steps, uses)
 
     def key(mode, bits):
         return tuple((mode >> b) & 1 for b in bits)

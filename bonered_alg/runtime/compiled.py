@@ -150,6 +150,20 @@ def _build(cc: str, flags: tuple[str, ...], source: Path, text: bytes, out: str)
             raise failed(run)
 
 
+def _over_threads(n: int, work: int, run) -> None:
+    """``run(lo, hi)`` over ``[0, n)``: in one call, or split evenly over up to
+    :func:`threads` threads where ``work`` (in poses of ``bonered_solve``) gives each at
+    least MIN_PER_THREAD."""
+    k = min(threads(), max(1, work // MIN_PER_THREAD))
+    if k == 1:
+        run(0, n)
+        return
+    bounds = [n * i // k for i in range(k + 1)]
+    futures = [_executor(k).submit(run, bounds[i], bounds[i + 1]) for i in range(k)]
+    for f in futures:
+        f.result()
+
+
 def _executor(n: int) -> ThreadPoolExecutor:
     global _pool
     with _lock:
@@ -267,14 +281,7 @@ class FastPath:
                 int(bool(limits)), q[lo:].ctypes.data, status[lo:].ctypes.data,
                 jac[lo:].ctypes.data if jacobian else None, int(bool(public)))
 
-        k = min(threads(), max(1, n // MIN_PER_THREAD))
-        if k == 1:
-            run(0, n)
-        else:
-            bounds = [n * i // k for i in range(k + 1)]
-            futures = [_executor(k).submit(run, bounds[i], bounds[i + 1]) for i in range(k)]
-            for f in futures:
-                f.result()
+        _over_threads(n, n, run)
         return (q.reshape(shape + (self.n_joints,)), status.reshape(shape),
                 None if jac is None else jac.reshape(shape + (self.n_joints, self.n_pose)))
 
@@ -297,15 +304,7 @@ class FastPath:
             lib.bonered_solve_all(hi - lo, flat[lo:].ctypes.data, parv.ctypes.data,
                                   int(bool(limits)), q[lo:].ctypes.data, int(bool(public)))
 
-        # a pose costs about ``modes`` poses of bonered_solve
-        k = min(threads(), max(1, n * modes // MIN_PER_THREAD))
-        if k == 1:
-            run(0, n)
-        else:
-            bounds = [n * i // k for i in range(k + 1)]
-            futures = [_executor(k).submit(run, bounds[i], bounds[i + 1]) for i in range(k)]
-            for f in futures:
-                f.result()
+        _over_threads(n, n * modes, run)  # a pose costs about ``modes`` poses of solve
         return q.reshape(shape + (modes, self.n_joints))
 
     def scan(self, start: int, stop: int, axes: list[tuple[int, float, float, int]],

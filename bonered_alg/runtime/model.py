@@ -262,8 +262,8 @@ class Model:
     def _solve_all(self, pose, par, limits, out):
         """``q`` of every working mode written into ``out`` (k, MODES, len(JOINTS)) in the
         user's units: the numbers of :meth:`_solve` mode by mode, with the Study map
-        evaluated once and each IK step once per choice of the earlier roots
-        (:func:`backsubstitute_modes`)."""
+        evaluated once and each IK step once per choice of the roots it reads
+        (:func:`backsubstitute_modes`, ``step_uses``)."""
         with numpy.errstate(all="ignore"):
             shared = self.pose_values(pose, par)
         study = self._study_columns(pose, par, shared)
