@@ -105,7 +105,34 @@ def mpmath_function(args, expr):
     import mpmath
 
     namespace = {name: _remembering(getattr(mpmath, name)) for name in _MEMO_FUNCTIONS}
-    return sp.lambdify(args, expr, modules=[namespace, "mpmath"])
+    # the printer lambdify would make for these modules, printing each subexpression once
+    printer = _remembering_printer()({"fully_qualified_modules": False, "inline": True,
+                                      "allow_unknown_functions": True,
+                                      "user_functions": {k: k for k in namespace}})
+    return sp.lambdify(args, expr, modules=[namespace, "mpmath"], printer=printer)
+
+
+def _remembering_printer():
+    """sympy's ``MpmathPrinter`` with the text of each subexpression kept: a printed
+    subexpression depends on it and the settings only (the parentheses are added around it
+    by its parent), and derivatives of composed expressions repeat the same subtrees
+    thousands of times (printing them was a third of 001's verification)."""
+    from sympy.printing.pycode import MpmathPrinter
+
+    class RememberingMpmathPrinter(MpmathPrinter):
+        def __init__(self, settings=None):
+            super().__init__(settings)
+            self._printed: dict = {}
+
+        def _print(self, expr, **kwargs):
+            if kwargs or not isinstance(expr, sp.Basic):
+                return super()._print(expr, **kwargs)
+            text = self._printed.get(expr)
+            if text is None:
+                text = self._printed[expr] = super()._print(expr)
+            return text
+
+    return RememberingMpmathPrinter
 
 
 def _remembering(func):

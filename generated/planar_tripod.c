@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9601b6e1e161209fc057317d2751b4d0081bc1208b91729b1e35ed56a433c7f7
+ * Derivation hash: f3b2e9d9f7343dc322280182cea314a4481505d2e47f33100250b0752901af86
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9601b6e1e161209fc057317d2751b4d0081bc1208b91729b1e35ed56a433c7f7";
+const char bonered_derivation_hash[] = "f3b2e9d9f7343dc322280182cea314a4481505d2e47f33100250b0752901af86";
 int bonered_abi(void) { return 3; }
 #endif
 

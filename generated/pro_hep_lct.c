@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 23a9b670b6f044bff0d34c82e9fc74b9cb5700434047374842faeddac91fe211
+ * Derivation hash: 59503ce4464827c2157d634d9cb174039395cb251d90c4c215301c1272f8aef2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "23a9b670b6f044bff0d34c82e9fc74b9cb5700434047374842faeddac91fe211";
+const char bonered_derivation_hash[] = "59503ce4464827c2157d634d9cb174039395cb251d90c4c215301c1272f8aef2";
 int bonered_abi(void) { return 3; }
 #endif
 

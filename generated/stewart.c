@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c6fb918c10ebe867a827e5c903111d980c95afe4fe6e236d44d0330409e9cd09
+ * Derivation hash: dc71846d6c8bb18905c64972a414941b86b6bf838919979907dde2b480091041
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c6fb918c10ebe867a827e5c903111d980c95afe4fe6e236d44d0330409e9cd09";
+const char bonered_derivation_hash[] = "dc71846d6c8bb18905c64972a414941b86b6bf838919979907dde2b480091041";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4b48cd5f25241e710cfb9709a2c56b2ed876c100d14559ac299cf82251500980
+ * Derivation hash: 0fc55631660185d878287c3a286ba3afcb8b70ee42e7d910bad05f4ddca7dd29
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "4b48cd5f25241e710cfb9709a2c56b2ed876c100d14559ac299cf82251500980";
+const char bonered_derivation_hash[] = "0fc55631660185d878287c3a286ba3afcb8b70ee42e7d910bad05f4ddca7dd29";
 int bonered_abi(void) { return 3; }
 #endif
 

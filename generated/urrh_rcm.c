@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f2d91c41282019aff4defab2dedf85530eb621bc9a5cbb0f1f15e94de99eaa5b
+ * Derivation hash: b89d07accaac7a1591202c22543bdac028e0c4f8b6ae95ffc3126722ffefe664
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f2d91c41282019aff4defab2dedf85530eb621bc9a5cbb0f1f15e94de99eaa5b";
+const char bonered_derivation_hash[] = "b89d07accaac7a1591202c22543bdac028e0c4f8b6ae95ffc3126722ffefe664";
 int bonered_abi(void) { return 3; }
 #endif
 

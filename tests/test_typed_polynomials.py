@@ -142,3 +142,22 @@ def test_discriminant_is_sympys(seed):
     fast = pr.discriminant(expr, q)
     reference = sp.expand(sp.discriminant(expr, q))
     assert fast == reference and sp.srepr(fast) == sp.srepr(reference)
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_canonical_key_orders_as_basic_compare(seed):
+    """The key of :func:`polyring.canonical_key` sorts as ``cmp_to_key(Basic.compare)``
+    (sympy's canonical order of arguments): monomials with rational coefficients of every
+    sign and size, powers, symbols with and without assumptions, numbers."""
+    from sympy.core.basic import _args_sortkey
+
+    rng = random.Random(300 + seed)
+    gens = (*S, *sp.symbols("u v w_2"))
+    items = [_plain(_random_terms(rng, 1, len(gens)), gens) for _ in range(60)]
+    items += [g ** rng.randint(1, 4) for g in rng.sample(gens, 5)]
+    items += [sp.Rational(rng.randint(-9, 9), rng.randint(1, 4)) for _ in range(4)]
+    rng.shuffle(items)
+    memo: dict = {}
+    ours = sorted(items, key=lambda e: pr.canonical_key(e, memo))
+    theirs = sorted(items, key=_args_sortkey)
+    assert [sp.srepr(e) for e in ours] == [sp.srepr(e) for e in theirs]

@@ -15,7 +15,7 @@ from fractions import Fraction
 from functools import reduce
 
 import sympy as sp
-from sympy.core.basic import _args_sortkey
+from sympy.core.basic import Basic, ordering_of_classes
 from sympy.polys.polyutils import _sort_gens
 from sympy.polys.rings import PolyElement, PolyRing
 
@@ -137,6 +137,50 @@ def as_expr(p: PolyElement) -> sp.Expr:
 
 
 # ------------------------------------------------------------------ expressions
+_CLASS_RANK: dict[type, tuple[int, str]] = {}
+
+
+def _class_rank(cls: type) -> tuple[int, str]:
+    """The position of ``cls`` in sympy's ``ordering_of_classes`` (unknown classes after
+    the known ones, by name): ``sympy.core.basic._cmp_name`` as a key."""
+    rank = _CLASS_RANK.get(cls)
+    if rank is None:
+        name = cls.__name__
+        if name in ordering_of_classes:
+            rank = (ordering_of_classes.index(name), "")
+        else:
+            rank = (len(ordering_of_classes) + 1, name)
+        _CLASS_RANK[cls] = rank
+    return rank
+
+
+def canonical_key(expr: Basic, memo: dict | None = None, remember: bool = True) -> tuple:
+    """A sort key with the order of ``Basic.compare`` (``sympy.core.basic._args_sortkey``,
+    the order ``Mul`` and ``Add`` keep their arguments in): the class, the length of the
+    hashable content, then its items, each a Basic's key or the raw value (a Basic before
+    anything else, as ``compare`` has it).  Computed once per object (``memo``), not in
+    every comparison of a sort: sorting thousands of terms took seconds with
+    ``cmp_to_key(Basic.compare)``.  ``remember=False`` keeps ``expr``'s own key out of
+    ``memo`` (its parts' keys go in), for objects sorted once."""
+    if memo is not None:
+        key = memo.get(expr)
+        if key is not None:
+            return key
+    content = expr._hashable_content()
+    items = []
+    for item in content:
+        if isinstance(item, Basic):
+            items.append((0, canonical_key(item, memo)))
+        elif isinstance(item, frozenset):
+            items.append((0, canonical_key(Basic(*item), memo)))
+        else:
+            items.append((1, item))
+    key = (_class_rank(type(expr)), len(content), tuple(items))
+    if memo is not None and remember:
+        memo[expr] = key
+    return key
+
+
 def expression(terms: Iterable[tuple[tuple[int, ...], Fraction | int]], gens: Sequence[sp.Symbol],
                powers: dict | None = None) -> sp.Expr:
     """A polynomial given as distinct monomials ``(exponents, coefficient)`` as the sympy
@@ -144,8 +188,9 @@ def expression(terms: Iterable[tuple[tuple[int, ...], Fraction | int]], gens: Se
     arguments without sympy's flattening (several times faster on thousands of terms): each
     product's factors and the sum's terms sorted by sympy's canonical key, the number first,
     as ``Mul.flatten`` and ``Add.flatten`` leave them (``tests/test_typed_polynomials.py``
-    pins the two equal).  ``powers`` caches ``g**k`` across calls."""
+    pins the two equal).  ``powers`` caches ``g**k`` and their sort keys across calls."""
     powers = {} if powers is None else powers
+    keys = powers.setdefault("canonical keys", {})
     args, constant = [], None
     for e, c in terms:
         c = Fraction(c)
@@ -162,11 +207,11 @@ def expression(terms: Iterable[tuple[tuple[int, ...], Fraction | int]], gens: Se
         if not factors:
             constant = coeff if constant is None else constant + coeff
             continue
-        factors.sort(key=_args_sortkey)
+        factors.sort(key=lambda f: canonical_key(f, keys))
         if coeff != 1:
             factors.insert(0, coeff)
         args.append(sp.Mul._from_args(factors) if len(factors) > 1 else factors[0])
-    args.sort(key=_args_sortkey)
+    args.sort(key=lambda t: canonical_key(t, keys, remember=False))
     if constant is not None and constant != 0:
         args.insert(0, constant)
     if not args:
@@ -253,3 +298,69 @@ def factor_list(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
         out.append((_from_flint(f, gens, powers=powers), int(k)))
     return constant, out
 
+
+
+def factor_list_sorted(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
+    """``sympy.factor_list(expr)`` exactly, factors in sympy's order: :func:`factor_list`
+    (FLINT) sorted by the key of ``sympy.polys.polytools._sorted_factors`` (the dense
+    representation in sympy's sorted generators, its length first, then the multiplicity).
+    For callers whose output follows the order of the factors."""
+    gens = tuple(_sort_gens(expr.free_symbols)) if expr.free_symbols else ()
+    if _flint_poly(expr, gens) is None:
+        return sp.factor_list(expr)
+    constant, factors = factor_list(expr)
+
+    def key(item):
+        rep = sp.Poly(item[0], *gens).rep.to_list()
+        return (len(rep), item[1], rep)
+
+    return constant, sorted(factors, key=key)
+
+
+def monomial_in(term: sp.Expr, v: sp.Symbol) -> tuple[sp.Expr, int] | None:
+    """``(c, e)`` with ``term = c v^e`` for a monomial ``term`` (a rational times positive
+    integer powers of symbols; ``c`` the canonical product of the rest), or None for
+    anything else."""
+    coeff, factors = term.as_coeff_mul()
+    if not coeff.is_Rational:
+        return None
+    e, rest = 0, []
+    for f in factors:
+        base, k = (f.base, f.exp) if f.is_Pow else (f, sp.S.One)
+        if not (base.is_Symbol and k.is_Integer and k > 0):
+            return None
+        if base == v:
+            e += int(k)
+        else:
+            rest.append(f)
+    return sp.Mul(coeff, *rest), e
+
+
+def coefficients_of_monomials(g: sp.Expr, v: sp.Symbol) -> dict[int, sp.Expr] | None:
+    """``{k: coefficient of v^k}`` of ``g`` when ``g`` is a sum of monomials
+    (:func:`monomial_in`), each coefficient the canonical sum of its monomials, as expanded
+    as ``g``; None for anything else (the caller uses ``sympy.Poly``).  Reading the terms
+    is many times faster than ``Poly(g, v)`` or ``as_coeff_exponent`` (which collects)."""
+    by_power: dict[int, list[sp.Expr]] = {}
+    for term in sp.Add.make_args(g):
+        split = monomial_in(term, v)
+        if split is None:
+            return None
+        by_power.setdefault(split[1], []).append(split[0])
+    return {k: sp.Add(*cs) for k, cs in by_power.items()}
+
+
+def _is_monomial(term: sp.Expr) -> bool:
+    coeff, factors = term.as_coeff_mul()
+    return coeff.is_Rational and all(
+        f.is_Symbol or (f.is_Pow and f.base.is_Symbol and f.exp.is_Integer and f.exp > 0)
+        for f in factors)
+
+
+def expanded(expr: sp.Expr) -> sp.Expr:
+    """``sympy.expand(expr)``, without the rebuild where ``expr`` is a sum of monomials
+    with rational coefficients already (``expand`` returns it unchanged; on polynomials of
+    thousands of terms it takes seconds to find that out)."""
+    if expr.is_Add and all(_is_monomial(t) for t in expr.args):
+        return expr
+    return sp.expand(expr)

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from ..algebra import convention as cv
+from ..algebra import polyring as pr
 from ..algebra import study_symbolic as ss
 from ..chains.joints import Role
 from ..elimination.closure import leg_problem
@@ -213,16 +214,14 @@ def _candidate(g: sp.Expr, v: sp.Symbol, memo: dict):
 def _coefficients_in(g: sp.Expr, v: sp.Symbol) -> list[sp.Expr]:
     """The coefficients of ``v^0, v^1, ...`` of the polynomial ``g``, each expanded: read
     off the terms of a sum of monomials (a ``Poly`` in ``v`` over the other symbols took a
-    fifth of a derivation on 002's generators); through ``Poly`` for anything else."""
-    by_power: dict[int, list[sp.Expr]] = {}
-    for term in sp.Add.make_args(g):
-        c, e = term.as_coeff_exponent(v)
-        if not (e.is_Integer and e >= 0) or c.has(v):
-            poly = sp.Poly(g, v)
-            return [sp.expand(poly.coeff_monomial(v**k)) for k in range(poly.degree() + 1)]
-        by_power.setdefault(int(e), []).append(c)
+    fifth of a derivation on 002's generators; ``as_coeff_exponent``, which collects, half
+    of what was left); through ``Poly`` for anything else."""
+    by_power = pr.coefficients_of_monomials(g, v)
+    if by_power is None:
+        poly = sp.Poly(g, v)
+        return [sp.expand(poly.coeff_monomial(v**k)) for k in range(poly.degree() + 1)]
     degree = max(by_power, default=0)
-    return [sp.expand(sp.Add(*by_power.get(k, []))) for k in range(degree + 1)]
+    return [by_power.get(k, sp.S.Zero) for k in range(degree + 1)]
 
 
 def _vanishes_memo(coefficients, points, memo: dict) -> bool:

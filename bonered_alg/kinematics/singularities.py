@@ -40,7 +40,7 @@ PRODUCT_LIMIT = 20_000
 
 
 def _terms(e: sp.Expr) -> int:
-    return len(sp.Add.make_args(sp.expand(e)))
+    return len(sp.Add.make_args(pr.expanded(e)))
 
 
 def large_product(factors: list[sp.Expr]) -> bool:
@@ -61,16 +61,16 @@ def factored(name: str, expr: sp.Expr, meaning: str = "",
     if isinstance(expr, sp.Mul) and large_product(list(expr.args)):
         c, merged = sp.Integer(1), {}
         for arg in expr.args:
-            ca, fa = pr.factor_list(sp.expand(arg))
+            ca, fa = pr.factor_list(pr.expanded(arg))
             c *= ca
             for f, k in fa:
-                f = sp.expand(f)
+                f = pr.expanded(f)
                 merged[f] = merged.get(f, 0) + int(k)
         fl = list(merged.items())
     else:
-        expr = sp.expand(expr)
+        expr = pr.expanded(expr)
         c, fl = pr.factor_list(expr)
-    fl = sorted(((sp.expand(f), int(k)) for f, k in fl), key=lambda t: (sp.count_ops(t[0]),
+    fl = sorted(((pr.expanded(f), int(k)) for f, k in fl), key=lambda t: (sp.count_ops(t[0]),
                                                                       sp.srepr(t[0])))
     return FactoredPolynomial(name, expr, c, tuple(fl), meaning, evaluate)
 
@@ -78,9 +78,13 @@ def factored(name: str, expr: sp.Expr, meaning: str = "",
 def discriminant(g: sp.Expr, q: sp.Symbol) -> sp.Expr:
     """Discriminant of ``g`` in ``q`` (degree 2: ``B^2 - 4AC``); ``-4 A C`` as an unevaluated
     product when ``B = 0`` and the product is large."""
-    poly = sp.Poly(sp.expand(g), q)
-    if poly.degree() == 2 and poly.coeff_monomial(q) == 0:
-        a, c = poly.coeff_monomial(q**2), poly.coeff_monomial(1)
+    g = pr.expanded(g)
+    coeff = pr.coefficients_of_monomials(g, q)
+    if coeff is None:
+        poly = sp.Poly(g, q)
+        coeff = {m[0]: c for m, c in zip(poly.monoms(), poly.coeffs())}
+    if max(coeff, default=0) == 2 and 1 not in coeff:
+        a, c = coeff[2], coeff.get(0, sp.S.Zero)
         if large_product([a, c]):
             return sp.Mul(-4, a, c, evaluate=False)
-    return pr.discriminant(sp.expand(g), q)
+    return pr.discriminant(g, q)

@@ -273,7 +273,7 @@ def _verify_planar_singularity(deriv, ik, geo) -> list:
     d_ = {(i, j): sp.Symbol(f"d{i}{j}") for i in range(1, 4) for j in (3, 4, 5)}
     bmat = sp.Matrix(6, 6, lambda r, c: b_.get((r + 1, c + 1), 0) if r < 3
                      else d_.get((r - 2, c + 1), 0))
-    det_b = sp.expand(bmat.det())
+    det_b = sp.expand(bmat.det(method="laplace"))
     planar = bmat[:3, [0, 1, 5]].det()
     tripod = bmat[3:, [2, 3, 4]].det()
     sign = next((s for s in (1, -1) if sp.expand(det_b - s * planar * tripod) == 0), None)

@@ -76,7 +76,9 @@ class RPSEliminant:
             f"forward (type II) singularity of the {closure.name}: det d(e12, e23, e31)/d("
             + ", ".join(map(str, rps.angles)) + "), zero where two assembly modes merge "
             "and the platform moves infinitesimally with the legs locked",
-            evaluate=det.subs(angles_from_platform(rps, closure.platform)))
+            # one simultaneous replacement (no angle appears in another's value): the same
+            # expression as ``subs``, which rebuilt the expanded determinant once per angle
+            evaluate=det.xreplace(angles_from_platform(rps, closure.platform)))
         return ClosureFK(closure.name, self.name, problem, None, 0, count, (), rps, at, sing)
 
     def kernels(self, rps, joints, par) -> list:

@@ -20,6 +20,7 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
+from ..algebra import polyring as pr
 from ..analyses.closure_dimension import ClosureDimension
 from ..mobility.chains import leg_chain, spatial_twist
 from ..mobility.screws import ChainScrews, mobility, rank
@@ -79,55 +80,40 @@ def _gradient(expr, unknowns, vals) -> tuple[np.ndarray, float]:
     """d(expr)/d(unknowns) at ``vals``, from its polynomial terms in exact rational
     arithmetic at the (binary) point, and the largest sum of the terms' magnitudes (the
     scale the gradient is computed against: the long generators' terms cancel by many
-    orders of magnitude)."""
+    orders of magnitude).  Both exact (FLINT's rational polynomials): the partial of the
+    polynomial at ``x``, and the partial of the polynomial with the coefficients' absolute
+    values at ``|x|`` (the sum of the partial's terms' magnitudes)."""
+    import flint
+
     syms = sorted(expr.free_symbols, key=str)
     if not syms:
         return np.zeros(len(unknowns)), 0.0
-    try:  # a generator is a sum of monomials already: no second expansion
-        poly = sp.Poly(expr, *syms, expand=False)
-    except sp.PolynomialError:
+    terms = pr.terms_of(expr, syms)
+    if terms is None:  # not an expanded polynomial with rational coefficients
         poly = sp.Poly(expr, *syms)
+        terms = {e: Fraction(int(c.p), int(c.q)) if c.is_Rational else Fraction(float(c))
+                 for e, c in zip(poly.monoms(), poly.coeffs())}
+    ctx = flint.fmpq_mpoly_ctx.get(tuple(f"v{i}" for i in range(len(syms))), "lex")
+
+    def rational(c: Fraction):
+        return flint.fmpq(c.numerator, c.denominator)
+
+    signed = ctx.from_dict({e: rational(c) for e, c in terms.items()})
+    size = ctx.from_dict({e: rational(abs(c)) for e, c in terms.items()})
     x = [Fraction(float(vals[s])) for s in syms]
-    coeffs = [Fraction(int(c.p), int(c.q)) if c.is_Rational else Fraction(float(c))
-              for c in poly.coeffs()]
+    at, at_abs = [rational(v) for v in x], [rational(abs(v)) for v in x]
+
+    def exact(value) -> float:
+        return float(Fraction(int(value.p), int(value.q)))
+
     out = np.zeros(len(unknowns))
     scale = 0.0
-    monoms = poly.monoms()
-    powers: dict[tuple[int, int], Fraction] = {}
-
-    def power(v: int, p_: int) -> Fraction:
-        if (v, p_) not in powers:
-            powers[v, p_] = x[v] ** p_
-        return powers[v, p_]
-
-    # each monomial's value once; a partial is c e_i x^e / x_i where x_i != 0 (exact, as the
-    # product written out term by term)
-    values = []
-    for e, c in zip(monoms, coeffs):
-        m = c
-        for v, ev in enumerate(e):
-            if ev:
-                m *= power(v, ev)
-        values.append(m)
     for k, u in enumerate(unknowns):
         if u not in syms:
             continue
         i = syms.index(u)
-        total, size = Fraction(0), Fraction(0)
-        for e, c, m in zip(monoms, coeffs, values):
-            if e[i]:
-                if x[i] != 0:
-                    term = m * e[i] / x[i]
-                else:
-                    term = c * e[i]
-                    for v, ev in enumerate(e):
-                        p_ = ev - 1 if v == i else ev
-                        if p_:
-                            term *= power(v, p_)
-                total += term
-                size += abs(term)
-        out[k] = float(total)
-        scale = max(scale, float(size))
+        out[k] = exact(signed.derivative(i)(*at))
+        scale = max(scale, exact(size.derivative(i)(*at_abs)))
     return out, scale
 
 
