@@ -19,6 +19,15 @@ MECHANISMS = {
 }
 REGISTRY = tuple(MECHANISMS)
 
+# seconds a cold derivation of each took on a 2-core machine (2026-12-06): only the order in
+# which ``derive_all`` hands mechanisms to its worker processes reads them (the longest
+# first, so that two workers finish together); a local record of the last run's times
+# (``pipeline.runner``) takes their place once there is one
+EXPECTED_SECONDS = {
+    "urrh_rcm": 49, "tripod_planar": 37, "stewart": 35, "planar_tripod": 19,
+    "pro_hep_lct": 16, "lamina_milling": 5,
+}
+
 
 def module_path(name: str) -> str:
     """The declaration module of mechanism ``name``; a clear error for unknown names."""

@@ -136,3 +136,23 @@ def test_parallel_derive_writes_the_committed_bytes(tmp_path):
     assert [line.split(":")[0] for line in lines] == names
     assert all(line.endswith("wrote nothing new") for line in lines), lines
     assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before
+
+
+def test_workers_get_the_longest_derivation_first(tmp_path, monkeypatch):
+    """derive_all hands mechanisms to its workers longest first: the registry's estimates
+    on a machine without a record, this machine's last times once recorded; a damaged
+    record falls back to the estimates."""
+    from bonered_alg.pipeline import runner
+    from bonered_alg.registry import EXPECTED_SECONDS, REGISTRY
+
+    monkeypatch.setenv("BONERED_CACHE_DIR", str(tmp_path / "cache" / "elimination"))
+    by_estimate = sorted(REGISTRY, key=lambda n: -EXPECTED_SECONDS[n])
+    assert runner.longest_first(list(REGISTRY)) == by_estimate
+    assert runner.longest_first(["lamina_milling", "new_one", "urrh_rcm"]) == [
+        "new_one", "urrh_rcm", "lamina_milling"]  # no estimate: first
+    runner._record_seconds({"lamina_milling": 500.0})  # noqa: SLF001
+    runner._record_seconds({"stewart": 1.0})  # noqa: SLF001
+    order = runner.longest_first(list(REGISTRY))
+    assert order[0] == "lamina_milling" and order[-1] == "stewart"
+    (tmp_path / "cache" / "derive_seconds.json").write_text("{not json")
+    assert runner.longest_first(list(REGISTRY)) == by_estimate
