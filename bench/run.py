@@ -131,7 +131,31 @@ def derive_benchmarks():
                                                 capture_output=True), 3)
     return {"cold_one_process": per_mechanism,
             "cold_one_process_sum_s": sum(v["total_s"] for v in per_mechanism.values()),
+            "cold_derive_force_all_cores_s": cold_derive_force(),
             "derive_when_up_to_date_s": t_noop}
+
+
+def cold_derive_force() -> float:
+    """Wall seconds of ``bonered-alg derive --force`` as on a fresh clone: every core, an
+    empty elimination cache and no record of earlier derivation times (the registry's
+    estimates order the work), into a copy of the outputs (``--root``), the comparison
+    study not included."""
+    import shutil
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        for folder in ("generated", "derivations"):
+            shutil.copytree(ROOT / folder, root / folder)
+        shutil.copy(ROOT / "constraints.txt", root)
+        env = {**os.environ, "BONERED_CACHE_DIR": str(root / "cache" / "elimination")}
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "bonered_alg.cli", "derive", "--force", "--quiet",
+                        "--root", str(root)], cwd=ROOT, env=env, check=True,
+                       capture_output=True)
+        seconds = time.perf_counter() - t0
+    print("cold derive --force on every core", seconds, flush=True)
+    return seconds
 
 
 def reachable_poses(n, rng):
