@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0a0f6668f216486931e7c5d3c95a46a949dd4cd0885a88b5a205d0dce3147aa3
+ * Derivation hash: 2b65c607f6d459b0b1716ad133e647e4b29d6a4336273ade2f02fcf9ccac0e79
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0a0f6668f216486931e7c5d3c95a46a949dd4cd0885a88b5a205d0dce3147aa3";
+const char bonered_derivation_hash[] = "2b65c607f6d459b0b1716ad133e647e4b29d6a4336273ade2f02fcf9ccac0e79";
 int bonered_abi(void) { return 3; }
 #endif
 

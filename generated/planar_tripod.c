@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f3b2e9d9f7343dc322280182cea314a4481505d2e47f33100250b0752901af86
+ * Derivation hash: a1d9600ebe468ff1a9efc184e8ad29e3c131e11e820e93df768893fc33b6ee9d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f3b2e9d9f7343dc322280182cea314a4481505d2e47f33100250b0752901af86";
+const char bonered_derivation_hash[] = "a1d9600ebe468ff1a9efc184e8ad29e3c131e11e820e93df768893fc33b6ee9d";
 int bonered_abi(void) { return 3; }
 #endif
 

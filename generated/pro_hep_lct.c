@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 59503ce4464827c2157d634d9cb174039395cb251d90c4c215301c1272f8aef2
+ * Derivation hash: def36964599297a5d6b3db23a265a496b57a24f2ba580c646a96127300f5c6ad
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "59503ce4464827c2157d634d9cb174039395cb251d90c4c215301c1272f8aef2";
+const char bonered_derivation_hash[] = "def36964599297a5d6b3db23a265a496b57a24f2ba580c646a96127300f5c6ad";
 int bonered_abi(void) { return 3; }
 #endif
 

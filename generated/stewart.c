@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dc71846d6c8bb18905c64972a414941b86b6bf838919979907dde2b480091041
+ * Derivation hash: c78f9564b2293c262174c9fb4fd51c9feb8472a24a7a75f4dbfaee9fc64ee6fd
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "dc71846d6c8bb18905c64972a414941b86b6bf838919979907dde2b480091041";
+const char bonered_derivation_hash[] = "c78f9564b2293c262174c9fb4fd51c9feb8472a24a7a75f4dbfaee9fc64ee6fd";
 int bonered_abi(void) { return 3; }
 #endif
 

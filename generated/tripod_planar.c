@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0fc55631660185d878287c3a286ba3afcb8b70ee42e7d910bad05f4ddca7dd29
+ * Derivation hash: eaff7b5ca6dd7035ada3dea6ee82b0d5e9cbe4f5cba3784a799df9937aca0366
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0fc55631660185d878287c3a286ba3afcb8b70ee42e7d910bad05f4ddca7dd29";
+const char bonered_derivation_hash[] = "eaff7b5ca6dd7035ada3dea6ee82b0d5e9cbe4f5cba3784a799df9937aca0366";
 int bonered_abi(void) { return 3; }
 #endif
 

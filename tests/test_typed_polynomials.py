@@ -161,3 +161,40 @@ def test_canonical_key_orders_as_basic_compare(seed):
     ours = sorted(items, key=lambda e: pr.canonical_key(e, memo))
     theirs = sorted(items, key=_args_sortkey)
     assert [sp.srepr(e) for e in ours] == [sp.srepr(e) for e in theirs]
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_coefficients_and_expanded_read_off_monomials_as_sympy(seed):
+    """coefficients_of_monomials is Poly(g, v)'s coefficients, expanded() is sp.expand,
+    each as the same expression; neither takes a term that is not a monomial."""
+    rng = random.Random(700 + seed)
+    g = _plain(_random_terms(rng, rng.choice((1, 3, 30)), len(S)), S)
+    v = rng.choice(S)
+    poly = sp.Poly(g, v)
+    got = pr.coefficients_of_monomials(g, v)
+    assert {k: sp.srepr(c) for k, c in got.items()} == {
+        m[0]: sp.srepr(sp.expand(c)) for m, c in zip(poly.monoms(), poly.coeffs())}
+    assert sp.srepr(pr.expanded(g)) == sp.srepr(sp.expand(g))
+    x, y = S[:2]
+    unexpanded = g + (x + y) ** 2
+    assert pr.coefficients_of_monomials(unexpanded, v) is None
+    assert sp.srepr(pr.expanded(unexpanded)) == sp.srepr(sp.expand(unexpanded))
+    assert pr.coefficients_of_monomials(g + sp.sqrt(3) * x, v) is None
+
+
+def test_parasitic_numerator_is_the_together_numerator_up_to_a_constant():
+    """The conditions' numerators from typed composition (analyses.parasitic) against
+    sympy's together: the same polynomial up to a rational factor; the same one where the
+    substitution leaves no cancelling products."""
+    from bonered_alg.analyses.parasitic import _numerator
+
+    a, b, c, x, y = S[:5]
+    sub = {x: a / 2 + c, y: a**2 / 4 + b / 3}
+    for g in (x * y + 3 * y - x**2, (x - a) ** 2 - y, x**2 - y):
+        reference = sp.expand(sp.fraction(sp.together(g.subs(sub)))[0])
+        got = _numerator(g, sub)
+        ratio = sp.cancel(got / reference)
+        assert ratio.is_Rational and ratio != 0
+    g = x * y + 3 * y
+    assert _numerator(g, sub) == sp.expand(sp.fraction(sp.together(g.subs(sub)))[0])
+    assert _numerator(x - 1, {x: 1 / (a + 1)}) == sp.expand(-a)  # not a polynomial: together

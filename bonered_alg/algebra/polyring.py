@@ -300,23 +300,6 @@ def factor_list(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
 
 
 
-def factor_list_sorted(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
-    """``sympy.factor_list(expr)`` exactly, factors in sympy's order: :func:`factor_list`
-    (FLINT) sorted by the key of ``sympy.polys.polytools._sorted_factors`` (the dense
-    representation in sympy's sorted generators, its length first, then the multiplicity).
-    For callers whose output follows the order of the factors."""
-    gens = tuple(_sort_gens(expr.free_symbols)) if expr.free_symbols else ()
-    if _flint_poly(expr, gens) is None:
-        return sp.factor_list(expr)
-    constant, factors = factor_list(expr)
-
-    def key(item):
-        rep = sp.Poly(item[0], *gens).rep.to_list()
-        return (len(rep), item[1], rep)
-
-    return constant, sorted(factors, key=key)
-
-
 def monomial_in(term: sp.Expr, v: sp.Symbol) -> tuple[sp.Expr, int] | None:
     """``(c, e)`` with ``term = c v^e`` for a monomial ``term`` (a rational times positive
     integer powers of symbols; ``c`` the canonical product of the rest), or None for

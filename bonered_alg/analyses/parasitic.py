@@ -24,10 +24,11 @@ from ..report.latex_util import broken_math, latex, tex_escape
 
 
 def _numerator(g: sp.Expr, sub: dict) -> sp.Expr:
-    """The numerator of ``g`` with ``sub`` substituted, expanded: with integer coefficients
-    of least common denominator cleared where the substituted values are polynomials
-    (typed polynomial composition, ten times faster than ``together`` and ``expand`` on the
-    expression, and the same numerator), through ``together`` where they are not."""
+    """A numerator of ``g`` with ``sub`` substituted, expanded.  Where the substituted
+    values are polynomials: the composition on typed polynomials with its denominators
+    cleared (ten times faster than ``together`` and ``expand`` on the expression; for 001's
+    conditions the same polynomials, in general the same up to a constant factor, which
+    the lex basis does not see); through ``together`` where they are not."""
     syms = sorted(g.free_symbols.union(*(sp.sympify(v).free_symbols for v in sub.values())),
                   key=str)
     ring = pr.ring_over(syms)

@@ -155,9 +155,8 @@ def _record_seconds(seconds: dict[str, float]) -> None:
 def longest_first(names: list[str]) -> list[str]:
     """``names`` by expected derivation time, the longest first (the registry's order
     among equals and for names without an estimate, which go first): handed to the
-    workers in this order, the last mechanism to start is a short one and two workers
-    finish at nearly the same time (cold, two cores: 84 s instead of 102 s in registry
-    order)."""
+    workers in this order, the last mechanism to start is a short one and the workers
+    finish at nearly the same time (in registry order a long one could start last)."""
     expected = expected_seconds()
     return sorted(names, key=lambda n: -expected.get(n, float("inf")))
 
