@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2b65c607f6d459b0b1716ad133e647e4b29d6a4336273ade2f02fcf9ccac0e79
+ * Derivation hash: a046c923bfcbca83058fbd2e3b1d411851e83cfe1173c6a8c5aa566dc0b0f63f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2b65c607f6d459b0b1716ad133e647e4b29d6a4336273ade2f02fcf9ccac0e79";
+const char bonered_derivation_hash[] = "a046c923bfcbca83058fbd2e3b1d411851e83cfe1173c6a8c5aa566dc0b0f63f";
 int bonered_abi(void) { return 3; }
 #endif
 

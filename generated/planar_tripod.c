@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a1d9600ebe468ff1a9efc184e8ad29e3c131e11e820e93df768893fc33b6ee9d
+ * Derivation hash: 6ec9bfdbf89697cb901eaf9da011ce94d00ee377bad1347f2a25b22839edba91
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a1d9600ebe468ff1a9efc184e8ad29e3c131e11e820e93df768893fc33b6ee9d";
+const char bonered_derivation_hash[] = "6ec9bfdbf89697cb901eaf9da011ce94d00ee377bad1347f2a25b22839edba91";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: def36964599297a5d6b3db23a265a496b57a24f2ba580c646a96127300f5c6ad
+ * Derivation hash: b1701ea4e557623b56e1064fd36b63b1ec063cdca87a1b9ee3732aa271d9d7e7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "def36964599297a5d6b3db23a265a496b57a24f2ba580c646a96127300f5c6ad";
+const char bonered_derivation_hash[] = "b1701ea4e557623b56e1064fd36b63b1ec063cdca87a1b9ee3732aa271d9d7e7";
 int bonered_abi(void) { return 3; }
 #endif
 

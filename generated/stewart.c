@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c78f9564b2293c262174c9fb4fd51c9feb8472a24a7a75f4dbfaee9fc64ee6fd
+ * Derivation hash: af8a3426eafdf27cc21b49fd2522843624217f2eac379790b67a0cae9feb805b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c78f9564b2293c262174c9fb4fd51c9feb8472a24a7a75f4dbfaee9fc64ee6fd";
+const char bonered_derivation_hash[] = "af8a3426eafdf27cc21b49fd2522843624217f2eac379790b67a0cae9feb805b";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: eaff7b5ca6dd7035ada3dea6ee82b0d5e9cbe4f5cba3784a799df9937aca0366
+ * Derivation hash: cfc3a96637c649f2adb1f400aaec6f06e64b30ef306ad4710be75e3ce949889e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "eaff7b5ca6dd7035ada3dea6ee82b0d5e9cbe4f5cba3784a799df9937aca0366";
+const char bonered_derivation_hash[] = "cfc3a96637c649f2adb1f400aaec6f06e64b30ef306ad4710be75e3ce949889e";
 int bonered_abi(void) { return 3; }
 #endif
 

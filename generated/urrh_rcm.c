@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 55e97018e8797403cb7a38e37e7166d863af031535c3cf4c97a9194751b0f949
+ * Derivation hash: e3cbe2d9e74141d3b225c01efa2c748a6539a640a9db889db1d05e28e544a95a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "55e97018e8797403cb7a38e37e7166d863af031535c3cf4c97a9194751b0f949";
+const char bonered_derivation_hash[] = "e3cbe2d9e74141d3b225c01efa2c748a6539a640a9db889db1d05e28e544a95a";
 int bonered_abi(void) { return 3; }
 #endif
 

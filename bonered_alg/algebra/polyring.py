@@ -300,6 +300,12 @@ def factor_list(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
 
 
 
+def _symbol_power(f: sp.Expr) -> tuple[sp.Expr, sp.Expr] | None:
+    """``(symbol, k)`` for a factor ``symbol**k`` (``k`` a positive integer), else None."""
+    base, k = (f.base, f.exp) if f.is_Pow else (f, sp.S.One)
+    return (base, k) if base.is_Symbol and k.is_Integer and k > 0 else None
+
+
 def monomial_in(term: sp.Expr, v: sp.Symbol) -> tuple[sp.Expr, int] | None:
     """``(c, e)`` with ``term = c v^e`` for a monomial ``term`` (a rational times positive
     integer powers of symbols; ``c`` the canonical product of the rest), or None for
@@ -309,11 +315,11 @@ def monomial_in(term: sp.Expr, v: sp.Symbol) -> tuple[sp.Expr, int] | None:
         return None
     e, rest = 0, []
     for f in factors:
-        base, k = (f.base, f.exp) if f.is_Pow else (f, sp.S.One)
-        if not (base.is_Symbol and k.is_Integer and k > 0):
+        power = _symbol_power(f)
+        if power is None:
             return None
-        if base == v:
-            e += int(k)
+        if power[0] == v:
+            e += int(power[1])
         else:
             rest.append(f)
     return sp.Mul(coeff, *rest), e
@@ -322,8 +328,8 @@ def monomial_in(term: sp.Expr, v: sp.Symbol) -> tuple[sp.Expr, int] | None:
 def coefficients_of_monomials(g: sp.Expr, v: sp.Symbol) -> dict[int, sp.Expr] | None:
     """``{k: coefficient of v^k}`` of ``g`` when ``g`` is a sum of monomials
     (:func:`monomial_in`), each coefficient the canonical sum of its monomials, as expanded
-    as ``g``; None for anything else (the caller uses ``sympy.Poly``).  Reading the terms
-    is many times faster than ``Poly(g, v)`` or ``as_coeff_exponent`` (which collects)."""
+    as ``g``; None for anything else.  Reading the terms is many times faster than
+    ``Poly(g, v)`` or ``as_coeff_exponent`` (which collects)."""
     by_power: dict[int, list[sp.Expr]] = {}
     for term in sp.Add.make_args(g):
         split = monomial_in(term, v)
@@ -333,11 +339,15 @@ def coefficients_of_monomials(g: sp.Expr, v: sp.Symbol) -> dict[int, sp.Expr] | 
     return {k: sp.Add(*cs) for k, cs in by_power.items()}
 
 
-def _is_monomial(term: sp.Expr) -> bool:
-    coeff, factors = term.as_coeff_mul()
-    return coeff.is_Rational and all(
-        f.is_Symbol or (f.is_Pow and f.base.is_Symbol and f.exp.is_Integer and f.exp > 0)
-        for f in factors)
+def coefficients(g: sp.Expr, v: sp.Symbol) -> dict[int, sp.Expr]:
+    """``{k: coefficient of v^k}`` of the polynomial ``g`` in ``v`` (non-zero ones): off
+    its monomials (:func:`coefficients_of_monomials`), through ``sympy.Poly`` where a term
+    is not a monomial."""
+    coeff = coefficients_of_monomials(g, v)
+    if coeff is None:
+        poly = sp.Poly(g, v)
+        coeff = {m[0]: c for m, c in zip(poly.monoms(), poly.coeffs())}
+    return coeff
 
 
 def expanded(expr: sp.Expr) -> sp.Expr:
@@ -347,3 +357,8 @@ def expanded(expr: sp.Expr) -> sp.Expr:
     if expr.is_Add and all(_is_monomial(t) for t in expr.args):
         return expr
     return sp.expand(expr)
+
+
+def _is_monomial(term: sp.Expr) -> bool:
+    coeff, factors = term.as_coeff_mul()
+    return coeff.is_Rational and all(_symbol_power(f) is not None for f in factors)

@@ -96,7 +96,7 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
         if probe is not None:
             best = next((c for c in cands if not _vanishes_at(c[6], c[5], probe)), best)
         _, _, _, _, src, q, g, deg = best
-        coeff = _coefficients(sp.expand(g), q)
+        coeff = pr.coefficients(sp.expand(g), q)
         steps.append(IKStep(q, g, deg, *(_compact(coeff.get(k, sp.Integer(0)))
                                           for k in (2, 1, 0)), src))
         if probe is not None:
@@ -156,16 +156,6 @@ def _coefficient(g: sp.Expr, q: sp.Symbol, k: int) -> sp.Expr:
     """Coefficient of ``q**k`` in the polynomial ``g``, read off its terms."""
     terms = sp.Add.make_args(sp.expand(g)) if not g.is_Add else g.args
     return sp.Add(*[t / q**k for t in terms if int(t.as_powers_dict().get(q, 0)) == k])
-
-
-def _coefficients(g: sp.Expr, q: sp.Symbol) -> dict[int, sp.Expr]:
-    """``{k: coefficient of q^k}`` of the expanded polynomial ``g`` (non-zero ones), read
-    off its monomials; through ``sympy.Poly`` where a term is not a monomial."""
-    coeff = pr.coefficients_of_monomials(g, q)
-    if coeff is None:
-        poly = sp.Poly(g, q)
-        coeff = {m[0]: c for m, c in zip(poly.monoms(), poly.coeffs())}
-    return coeff
 
 
 def _compact(c: sp.Expr, max_terms: int = 40) -> sp.Expr:

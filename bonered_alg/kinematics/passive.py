@@ -216,12 +216,8 @@ def _coefficients_in(g: sp.Expr, v: sp.Symbol) -> list[sp.Expr]:
     off the terms of a sum of monomials (a ``Poly`` in ``v`` over the other symbols took a
     fifth of a derivation on 002's generators; ``as_coeff_exponent``, which collects, half
     of what was left); through ``Poly`` for anything else."""
-    by_power = pr.coefficients_of_monomials(g, v)
-    if by_power is None:
-        poly = sp.Poly(g, v)
-        return [sp.expand(poly.coeff_monomial(v**k)) for k in range(poly.degree() + 1)]
-    degree = max(by_power, default=0)
-    return [by_power.get(k, sp.S.Zero) for k in range(degree + 1)]
+    by_power = pr.coefficients(g, v)
+    return [pr.expanded(by_power.get(k, sp.S.Zero)) for k in range(max(by_power, default=0) + 1)]
 
 
 def _vanishes_memo(coefficients, points, memo: dict) -> bool:

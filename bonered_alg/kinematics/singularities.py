@@ -79,10 +79,7 @@ def discriminant(g: sp.Expr, q: sp.Symbol) -> sp.Expr:
     """Discriminant of ``g`` in ``q`` (degree 2: ``B^2 - 4AC``); ``-4 A C`` as an unevaluated
     product when ``B = 0`` and the product is large."""
     g = pr.expanded(g)
-    coeff = pr.coefficients_of_monomials(g, q)
-    if coeff is None:
-        poly = sp.Poly(g, q)
-        coeff = {m[0]: c for m, c in zip(poly.monoms(), poly.coeffs())}
+    coeff = pr.coefficients(g, q)
     if max(coeff, default=0) == 2 and 1 not in coeff:
         a, c = coeff[2], coeff.get(0, sp.S.Zero)
         if large_product([a, c]):

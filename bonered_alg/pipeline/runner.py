@@ -122,16 +122,19 @@ def _times_file() -> Path:
     return cache_dir().parent / "derive_seconds.json"
 
 
+def _recorded_seconds() -> dict[str, float]:
+    """This machine's record, or nothing where there is none or it is damaged."""
+    try:
+        recorded = json.loads(_times_file().read_text())
+        return {k: float(v) for k, v in recorded.items() if isinstance(v, (int, float))}
+    except (OSError, ValueError, AttributeError):
+        return {}
+
+
 def expected_seconds() -> dict[str, float]:
     """How long each mechanism's derivation is expected to take: this machine's last times
     where recorded, else :data:`..registry.EXPECTED_SECONDS`."""
-    out = dict(EXPECTED_SECONDS)
-    try:
-        recorded = json.loads(_times_file().read_text())
-        out.update({k: float(v) for k, v in recorded.items() if isinstance(v, (int, float))})
-    except (OSError, ValueError, AttributeError):
-        pass  # no record, or a damaged one: the registry's figures
-    return out
+    return {**EXPECTED_SECONDS, **_recorded_seconds()}
 
 
 def _record_seconds(seconds: dict[str, float]) -> None:
@@ -139,12 +142,7 @@ def _record_seconds(seconds: dict[str, float]) -> None:
     leaves the registry's figures in use)."""
     if not seconds:
         return
-    try:
-        recorded = json.loads(_times_file().read_text())
-        merged = {**{k: v for k, v in recorded.items() if isinstance(v, (int, float))},
-                  **{k: round(v, 1) for k, v in seconds.items()}}
-    except (OSError, ValueError, AttributeError):
-        merged = {k: round(v, 1) for k, v in seconds.items()}
+    merged = {**_recorded_seconds(), **{k: round(v, 1) for k, v in seconds.items()}}
     try:
         _times_file().parent.mkdir(parents=True, exist_ok=True)
         atomic_write_text(_times_file(), json.dumps(merged, indent=1, sort_keys=True) + "\n")
