@@ -96,37 +96,82 @@ _MEMO_FUNCTIONS = ("mpf", "tan", "sin", "cos", "atan", "sqrt")
 
 
 def mpmath_function(args, expr):
-    """``sympy.lambdify(args, expr, "mpmath")`` whose functions of one argument (``tan``,
-    ``sqrt``, the constants ``mpf(1)``, ...) remember their values: the same printed code
-    and the same numbers, operation for operation (mpmath rounds each call correctly, so a
-    value computed once equals the value computed again), without recomputing ``tan`` of
-    the same angle at every occurrence.  The values are those of the working precision at
+    """``sympy.lambdify(args, expr, "mpmath")`` that computes each repeated subexpression
+    once and whose functions of one argument (``tan``, ``sqrt``, the constants ``mpf(1)``,
+    ...) remember their values: the same numbers, operation for operation (mpmath rounds
+    each operation correctly, so a value computed once equals the value computed again),
+    without recomputing the subtrees that derivatives of composed expressions repeat
+    thousands of times.  The values of the functions are those of the working precision at
     their first call: call the function at one precision only."""
     import mpmath
 
     namespace = {name: _remembering(getattr(mpmath, name)) for name in _MEMO_FUNCTIONS}
+    shared = _shared_subtrees(expr)
+    names = {node: sp.Symbol(f"_shared{k}") for k, node in enumerate(shared)}
     # the printer lambdify would make for these modules, printing each subexpression once
     printer = _remembering_printer()({"fully_qualified_modules": False, "inline": True,
                                       "allow_unknown_functions": True,
                                       "user_functions": {k: k for k in namespace}})
-    return sp.lambdify(args, expr, modules=[namespace, "mpmath"], printer=printer)
+    printer.names = {node: str(name) for node, name in names.items()}
+    return sp.lambdify(args, expr, modules=[namespace, "mpmath"], printer=printer,
+                       cse=lambda e: ([(names[node], node) for node in shared], e))
+
+
+def _shared_subtrees(expr) -> list:
+    """The compound subexpressions of ``expr`` (an expression, a list or a matrix of them)
+    that occur more than once, each after the ones it contains; none where a ``Piecewise``
+    or other conditional would make computing a branch ahead of time wrong."""
+    roots = list(expr) if isinstance(expr, (list, tuple, sp.MatrixBase)) else [expr]
+    if not all(isinstance(r, sp.Expr) for r in roots) or any(
+            r.has(sp.Piecewise) for r in roots):
+        return []
+    seen: set = set()
+    repeated: set = set()
+    order: list = []
+
+    def visit(node):
+        if not node.args or not isinstance(node, sp.Expr):
+            return
+        if node in seen:
+            repeated.add(node)
+            return
+        seen.add(node)
+        for arg in node.args:
+            visit(arg)
+        order.append(node)
+
+    for root in roots:
+        visit(root)
+    return [node for node in order if node in repeated]
 
 
 def _remembering_printer():
-    """sympy's ``MpmathPrinter`` with the text of each subexpression kept: a printed
-    subexpression depends on it and the settings only (the parentheses are added around it
-    by its parent), and derivatives of composed expressions repeat the same subtrees
-    thousands of times (printing them was a third of 001's verification)."""
+    """sympy's ``MpmathPrinter`` with the text of each subexpression kept, and the
+    subexpressions in ``names`` printed as their names except where they are defined (the
+    expression ``doprint`` is given).  A printed subexpression depends on it and the
+    settings only (the parentheses are added around it by its parent), and a name stands
+    for a value that its parent's code evaluates as a unit (the one case that differs, a
+    term ``-u`` printed as ``a - u`` where the name gives ``a + (-u)``, is the same number:
+    negation is exact and mpmath subtracts by adding the negation)."""
     from sympy.printing.pycode import MpmathPrinter
 
     class RememberingMpmathPrinter(MpmathPrinter):
         def __init__(self, settings=None):
             super().__init__(settings)
             self._printed: dict = {}
+            self.names: dict = {}
+            self._defining = False
+
+        def doprint(self, expr, *args, **kwargs):
+            self._defining = True
+            return super().doprint(expr, *args, **kwargs)
 
         def _print(self, expr, **kwargs):
+            defining, self._defining = self._defining, False
             if kwargs or not isinstance(expr, sp.Basic):
                 return super()._print(expr, **kwargs)
+            if expr in self.names:
+                return super()._print(expr) if defining else self.names[expr]
             text = self._printed.get(expr)
             if text is None:
                 text = self._printed[expr] = super()._print(expr)

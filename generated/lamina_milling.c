@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a046c923bfcbca83058fbd2e3b1d411851e83cfe1173c6a8c5aa566dc0b0f63f
+ * Derivation hash: 3b873bb608e58bd212fc99074899cf77133c06b297b2ef999eafcec4d28816f9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a046c923bfcbca83058fbd2e3b1d411851e83cfe1173c6a8c5aa566dc0b0f63f";
+const char bonered_derivation_hash[] = "3b873bb608e58bd212fc99074899cf77133c06b297b2ef999eafcec4d28816f9";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6ec9bfdbf89697cb901eaf9da011ce94d00ee377bad1347f2a25b22839edba91
+ * Derivation hash: f1017c82cf15067695af916524d0f27a8583e536e390cd5e2996b85b943ee5c5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6ec9bfdbf89697cb901eaf9da011ce94d00ee377bad1347f2a25b22839edba91";
+const char bonered_derivation_hash[] = "f1017c82cf15067695af916524d0f27a8583e536e390cd5e2996b85b943ee5c5";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b1701ea4e557623b56e1064fd36b63b1ec063cdca87a1b9ee3732aa271d9d7e7
+ * Derivation hash: 871617119efb0cc632604a0b1dff034aa03a358c6bc606e767e7a18b2be1a597
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b1701ea4e557623b56e1064fd36b63b1ec063cdca87a1b9ee3732aa271d9d7e7";
+const char bonered_derivation_hash[] = "871617119efb0cc632604a0b1dff034aa03a358c6bc606e767e7a18b2be1a597";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: af8a3426eafdf27cc21b49fd2522843624217f2eac379790b67a0cae9feb805b
+ * Derivation hash: a4cfade57a32736a6ed40d4a0508a4b3c9a3c9eec46d21cc70d7eca1a9b0f82c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "af8a3426eafdf27cc21b49fd2522843624217f2eac379790b67a0cae9feb805b";
+const char bonered_derivation_hash[] = "a4cfade57a32736a6ed40d4a0508a4b3c9a3c9eec46d21cc70d7eca1a9b0f82c";
 int bonered_abi(void) { return 3; }
 #endif
 

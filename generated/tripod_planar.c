@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: cfc3a96637c649f2adb1f400aaec6f06e64b30ef306ad4710be75e3ce949889e
+ * Derivation hash: b9159881b3fdacebe6d9afbabd9d8acb06c16410dbd9bc25eed51a514e1b89cf
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "cfc3a96637c649f2adb1f400aaec6f06e64b30ef306ad4710be75e3ce949889e";
+const char bonered_derivation_hash[] = "b9159881b3fdacebe6d9afbabd9d8acb06c16410dbd9bc25eed51a514e1b89cf";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e3cbe2d9e74141d3b225c01efa2c748a6539a640a9db889db1d05e28e544a95a
+ * Derivation hash: 5cb272d8235c6939f54f1f3d85c0a3eb473b790e96da2404aad5ffdb61aad098
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e3cbe2d9e74141d3b225c01efa2c748a6539a640a9db889db1d05e28e544a95a";
+const char bonered_derivation_hash[] = "5cb272d8235c6939f54f1f3d85c0a3eb473b790e96da2404aad5ffdb61aad098";
 int bonered_abi(void) { return 3; }
 #endif
 

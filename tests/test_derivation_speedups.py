@@ -10,7 +10,7 @@ from sympy.core import sorting
 from sympy.core.basic import Basic
 
 from bonered_alg.pipeline.sympy_memo import remembered_structure
-from bonered_alg.verification import mpmath_function
+from bonered_alg.verification import _shared_subtrees, mpmath_function
 
 x, y, z, a, b = sp.symbols("x y z a b", real=True)
 
@@ -62,6 +62,29 @@ def test_mpmath_function_gives_lambdify_s_numbers_bit_for_bit():
             want, got = plain(pa, pb), kept(pa, pb)
             assert all(isinstance(v, mpmath.mpf) for v in got)
             assert [mpmath.mpf(v) for v in want] == [mpmath.mpf(v) for v in got]
+
+
+def test_mpmath_function_computes_repeated_subtrees_once_with_the_same_numbers():
+    """Repeated subexpressions (as a term with a minus sign, a denominator, a power's base,
+    a function's argument, in a matrix) are computed once, and every number is lambdify's
+    to the last bit."""
+    u = sp.tan(a / 2) * x + sp.Rational(2, 7) * y
+    w = (1 + u**2) / (z - u)
+    exprs = [x - 3 * u + w, u * y / (z + u) ** 2 - sp.sqrt(1 + u**2), sp.diff(w * u, x)]
+    matrix = sp.Matrix([[w, -u], [sp.cos(u) * w, 1 / (1 + u**2)]])
+    assert u in _shared_subtrees(exprs) and 1 + u**2 in _shared_subtrees(exprs)
+    with mpmath.workdps(40):
+        for expr in (exprs, matrix):
+            plain = sp.lambdify((x, y, z, a), expr, "mpmath")
+            shared = mpmath_function((x, y, z, a), expr)
+            for point in ((0.3, -1.2, 5.0, 0.4), (mpmath.mpf("2.5"), 0.1, -3, -0.7)):
+                want, got = plain(*point), shared(*point)
+                assert [mpmath.mpf(v) for v in want] == [mpmath.mpf(v) for v in got]
+
+
+def test_no_shared_subtrees_across_the_branches_of_a_piecewise():
+    u = x * y + 1
+    assert _shared_subtrees([sp.Piecewise((1 / u, x > 0), (u, True)), u**2]) == []
 
 
 def test_pose_map_rates_are_the_derivatives():
