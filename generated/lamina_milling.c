@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3b873bb608e58bd212fc99074899cf77133c06b297b2ef999eafcec4d28816f9
+ * Derivation hash: bb31639ea4c4f6914f213ba90fec20a99379de34f45a7cac1634f124274ef8b1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3b873bb608e58bd212fc99074899cf77133c06b297b2ef999eafcec4d28816f9";
+const char bonered_derivation_hash[] = "bb31639ea4c4f6914f213ba90fec20a99379de34f45a7cac1634f124274ef8b1";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f1017c82cf15067695af916524d0f27a8583e536e390cd5e2996b85b943ee5c5
+ * Derivation hash: 646ef2a75357c428ba3697d82a5bf93c3a7a9f6dd29056360d870f3dc8315aa8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f1017c82cf15067695af916524d0f27a8583e536e390cd5e2996b85b943ee5c5";
+const char bonered_derivation_hash[] = "646ef2a75357c428ba3697d82a5bf93c3a7a9f6dd29056360d870f3dc8315aa8";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 871617119efb0cc632604a0b1dff034aa03a358c6bc606e767e7a18b2be1a597
+ * Derivation hash: 1a7251d672131e8be6ae252d673cca85434c97dee590f43ad69821ea5e032586
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "871617119efb0cc632604a0b1dff034aa03a358c6bc606e767e7a18b2be1a597";
+const char bonered_derivation_hash[] = "1a7251d672131e8be6ae252d673cca85434c97dee590f43ad69821ea5e032586";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b9159881b3fdacebe6d9afbabd9d8acb06c16410dbd9bc25eed51a514e1b89cf
+ * Derivation hash: 6155670a670700a0919e20de84d11f9329797f33516e4ad271acf431abc2d4ae
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b9159881b3fdacebe6d9afbabd9d8acb06c16410dbd9bc25eed51a514e1b89cf";
+const char bonered_derivation_hash[] = "6155670a670700a0919e20de84d11f9329797f33516e4ad271acf431abc2d4ae";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -105,3 +105,18 @@ def test_pose_map_rates_are_the_derivatives():
         assert len(row) == len(pose)
         for p, r in zip(pose, row):
             assert sp.cancel(sp.expand_trig(r - sp.diff(out, p))) == 0
+
+
+def test_spurious_factors_are_removed_as_sympy_s_factor_list_removes_them():
+    """passive._without_spurious_factors (FLINT's factors) gives the polynomial that
+    sympy's factor_list gives: without the factors free of v and the factors v^2 + 1."""
+    from bonered_alg.kinematics.passive import _without_spurious_factors
+
+    v = sp.Symbol("v", real=True)
+    cases = [sp.expand(-6 * (v**2 + 1) * (x * v - 2 * y) ** 2 * (3 * z + 1) * (v - x * y)),
+             sp.expand(sp.Rational(1, 4) * x**2 * (v**2 + 1) ** 2 * (2 * v**2 - z * v + 1)),
+             sp.expand((y - 1) * (v + x) * (v - x))]
+    for g in cases:
+        _, factors = sp.factor_list(g)
+        keep = [f**k for f, k in factors if f.has(v) and sp.expand(f - (v**2 + 1)) != 0]
+        assert _without_spurious_factors(g, v) == sp.expand(sp.Mul(*keep))

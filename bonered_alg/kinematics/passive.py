@@ -183,15 +183,17 @@ def _steps(basis, unknowns, context, points=(),
 
 def _without_spurious_factors(g: sp.Expr, v: sp.Symbol) -> sp.Expr:
     """``g`` without its factors free of ``v`` and its factors ``v^2 + 1``, which vanish for
-    no real ``v`` (the tan-half-angle denominators)."""
-    _, factors = sp.factor_list(g)
+    no real ``v`` (the tan-half-angle denominators).  FLINT factors (the same factors as
+    ``sympy.factor_list``, in another order, which the product does not see)."""
+    _, factors = pr.factor_list(g)
     keep = [f**k for f, k in factors if f.has(v) and sp.expand(f - (v**2 + 1)) != 0]
     return sp.expand(sp.Mul(*keep)) if keep else g
 
 
 def _candidate(g: sp.Expr, v: sp.Symbol, memo: dict):
     """``(ops, degree, coefficients)`` of ``g`` as a polynomial in ``v`` (coefficients of
-    ``v, 1`` for degree 1, of ``v^2, v, 1`` for degree 2; None for another degree), after
+    ``v, 1`` for degree 1, of ``v^2, v, 1`` for degree 2; ops and coefficients None for
+    another degree), after
     removing the factors that vanish for no real ``v``; computed once per generator and
     variable (a ``Poly`` of a large generator takes long, and :func:`_steps` asks again in
     every round)."""
@@ -202,11 +204,10 @@ def _candidate(g: sp.Expr, v: sp.Symbol, memo: dict):
             g = _without_spurious_factors(g, v)
             coeffs = _coefficients_in(g, v)
         degree = len(coeffs) - 1
-        ops = int(sp.count_ops(g))
-        if degree in (1, 2):
-            out = (ops, degree, tuple(coeffs[k] for k in range(degree, -1, -1)))
+        if degree in (1, 2):  # the operation count ranks candidates of these degrees only
+            out = (int(sp.count_ops(g)), degree, tuple(coeffs[k] for k in range(degree, -1, -1)))
         else:
-            out = (ops, degree, None)
+            out = (None, degree, None)
         memo[key] = out
     return memo[key]
 

@@ -103,8 +103,9 @@ def _verify_mobility(d, gen, poses, qs) -> Verdict:
     gens = [g for r in d.legs for g in r.generators]
     unknowns = [s for s in d.mechanism.closures[0].pose] + list(d.mechanism.joints)
     jac = sp.Matrix(gens).jacobian(unknowns)
-    par = {s.symbol: s.value for s in d.mechanism.parameters}
-    f = sp.lambdify(unknowns, jac.subs(par), "numpy")
+    par = {s.symbol: sp.sympify(s.value) for s in d.mechanism.parameters}
+    # all numbers put in at once (subs, one after another, took 3 s); only ranks are read
+    f = sp.lambdify(unknowns, jac.xreplace(par), "numpy")
     dims = set()
     for pose, q in zip(poses[:12], qs[:12]):
         t = np.tan(q / 2)
