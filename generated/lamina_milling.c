@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: bb31639ea4c4f6914f213ba90fec20a99379de34f45a7cac1634f124274ef8b1
+ * Derivation hash: 6cc324ba37d725adb7a6a8616fa88b8e51c449b85441118f9f4475247fa36440
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "bb31639ea4c4f6914f213ba90fec20a99379de34f45a7cac1634f124274ef8b1";
+const char bonered_derivation_hash[] = "6cc324ba37d725adb7a6a8616fa88b8e51c449b85441118f9f4475247fa36440";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 646ef2a75357c428ba3697d82a5bf93c3a7a9f6dd29056360d870f3dc8315aa8
+ * Derivation hash: ccb80718a72d82a278bd89aa61b95b2943a47b7d16530f88c1e090f4a2750a3c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "646ef2a75357c428ba3697d82a5bf93c3a7a9f6dd29056360d870f3dc8315aa8";
+const char bonered_derivation_hash[] = "ccb80718a72d82a278bd89aa61b95b2943a47b7d16530f88c1e090f4a2750a3c";
 int bonered_abi(void) { return 3; }
 #endif
 

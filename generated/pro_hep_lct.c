@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1a7251d672131e8be6ae252d673cca85434c97dee590f43ad69821ea5e032586
+ * Derivation hash: ce9b1c74c4789bf2ed49dd92b7fa44f6f5c46d54a9110e901b4dd27eb03e9d9f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1a7251d672131e8be6ae252d673cca85434c97dee590f43ad69821ea5e032586";
+const char bonered_derivation_hash[] = "ce9b1c74c4789bf2ed49dd92b7fa44f6f5c46d54a9110e901b4dd27eb03e9d9f";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 22134a0aeaab3325d7eeac9a440b971c51af4c20092a4ba7fdcaf543106b9602
+ * Derivation hash: 3e9611fbf533fc5cc8337315d0e4f2c1437f890c72eccbe8e951dd90651f89f4
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "22134a0aeaab3325d7eeac9a440b971c51af4c20092a4ba7fdcaf543106b9602";
+const char bonered_derivation_hash[] = "3e9611fbf533fc5cc8337315d0e4f2c1437f890c72eccbe8e951dd90651f89f4";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6155670a670700a0919e20de84d11f9329797f33516e4ad271acf431abc2d4ae
+ * Derivation hash: a0b93f4aa28c4b219b2a44fd2b7f9407565937819298b85a3d957a83618513fa
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6155670a670700a0919e20de84d11f9329797f33516e4ad271acf431abc2d4ae";
+const char bonered_derivation_hash[] = "a0b93f4aa28c4b219b2a44fd2b7f9407565937819298b85a3d957a83618513fa";
 int bonered_abi(void) { return 3; }
 #endif
 

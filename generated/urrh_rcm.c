@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2449e2b9e804b2c0a5e2f2e91a05b40aca33628106dad412f96b6bcafb4a4644
+ * Derivation hash: 78967d503cfb3c68cfb03f3ef31e8cfc803fea595ffe86bd1a740f2f31bef637
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2449e2b9e804b2c0a5e2f2e91a05b40aca33628106dad412f96b6bcafb4a4644";
+const char bonered_derivation_hash[] = "78967d503cfb3c68cfb03f3ef31e8cfc803fea595ffe86bd1a740f2f31bef637";
 int bonered_abi(void) { return 3; }
 #endif
 

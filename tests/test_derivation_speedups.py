@@ -120,3 +120,19 @@ def test_spurious_factors_are_removed_as_sympy_s_factor_list_removes_them():
         _, factors = sp.factor_list(g)
         keep = [f**k for f, k in factors if f.has(v) and sp.expand(f - (v**2 + 1)) != 0]
         assert _without_spurious_factors(g, v) == sp.expand(sp.Mul(*keep))
+
+
+def test_jacobian_determinant_is_sympy_s_expanded_determinant_term_for_term():
+    """polyring.jacobian_determinant (typed polynomials) builds the expression that sympy's
+    expanded Berkowitz determinant of the Jacobian is, the same tree; sympy's own route for
+    anything that is not a polynomial with rational coefficients."""
+    from bonered_alg.algebra.polyring import jacobian_determinant
+
+    u1, u2, u3 = sp.symbols("u1 u2 u3", real=True)
+    eqs = [sp.expand((1 + u1**2) * (1 + u2**2) * x - 4 * u1 * u2 * y + sp.Rational(3, 2) * z),
+           sp.expand(u2**2 * u3 - x * y * u3 + 7 * u2 - sp.Rational(1, 3)),
+           sp.expand((u3 - u1) ** 2 * z - x**2 * u1 * u3)]
+    for exprs in (eqs, [eqs[0], eqs[1], eqs[2] + sp.sqrt(3) * u1]):
+        want = sp.expand(sp.Matrix(exprs).jacobian([u1, u2, u3]).det(method="berkowitz"))
+        got = jacobian_determinant(exprs, (u1, u2, u3))
+        assert sp.srepr(got) == sp.srepr(want)

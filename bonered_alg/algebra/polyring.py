@@ -109,6 +109,23 @@ def determinant(m: Sequence[Sequence[PolyElement]]) -> PolyElement:
     return out
 
 
+def jacobian_determinant(exprs: Sequence[sp.Expr], variables: Sequence[sp.Symbol]) -> sp.Expr:
+    """``sp.expand(Matrix(exprs).jacobian(variables).det())`` of polynomials with rational
+    coefficients, the same expression, differentiated and expanded in ``Q[symbols]`` (the
+    expanded determinant is one canonical sum of monomials whichever way it is computed);
+    anything else goes to sympy."""
+    gens = tuple(_sort_gens(set().union(*(sp.sympify(e).free_symbols for e in exprs))
+                            | set(variables)))
+    if any(terms_of(e, gens) is None for e in exprs):
+        return sp.expand(sp.Matrix(exprs).jacobian(list(variables)).det(method="berkowitz"))
+    ring = ring_over(gens)
+    polys = [polynomial(ring, e) for e in exprs]
+    at = [ring.gens[gens.index(v)] for v in variables]
+    det = determinant([[p.diff(v) for v in at] for p in polys])
+    return expression(((e, Fraction(int(c.numerator), int(c.denominator)))
+                       for e, c in det.terms()), gens)
+
+
 def primitive_in(p: PolyElement, variables: Sequence[sp.Symbol]) -> PolyElement:
     """The primitive part of ``p`` as a polynomial in ``variables`` with coefficients in the
     ring's other symbols (Gauss's lemma: ``p`` divided by the gcd of those coefficients),

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from ..algebra import convention as cv
+from ..algebra import polyring as pr
 from ..algebra import study_symbolic as ss
 from ..chains.joints import Leg, Role
 from ..elimination import polyterms as pt
@@ -172,8 +173,7 @@ def count_solutions(system: RPSSystem, mech, algebra) -> tuple[int, dict]:
 def forward_singularity(system: RPSSystem) -> sp.Expr:
     """``det d(e12, e23, e31)/d(u1, u2, u3)``: zero where two assembly modes merge, the
     forward (type II) singularity of the tripod; in the leg angles and lengths."""
-    jac = sp.Matrix(system.equations).jacobian(list(system.angles))
-    return sp.expand(jac.det(method="berkowitz"))
+    return pr.jacobian_determinant(system.equations, system.angles)
 
 
 def angles_from_platform(system: RPSSystem, platform_study: tuple) -> dict[sp.Symbol, sp.Expr]:
