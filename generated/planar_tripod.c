@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ccb80718a72d82a278bd89aa61b95b2943a47b7d16530f88c1e090f4a2750a3c
+ * Derivation hash: 1f8085cdb1ab494e9226df28413e271e19776c1230b28c4dda7c2f1f2eca2866
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ccb80718a72d82a278bd89aa61b95b2943a47b7d16530f88c1e090f4a2750a3c";
+const char bonered_derivation_hash[] = "1f8085cdb1ab494e9226df28413e271e19776c1230b28c4dda7c2f1f2eca2866";
 int bonered_abi(void) { return 3; }
 #endif
 

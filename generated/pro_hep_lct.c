@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ce9b1c74c4789bf2ed49dd92b7fa44f6f5c46d54a9110e901b4dd27eb03e9d9f
+ * Derivation hash: ce8f373db2069a828a395758f1f7450a2b0fd8f02e07df39861c5f98cb305eb8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ce9b1c74c4789bf2ed49dd92b7fa44f6f5c46d54a9110e901b4dd27eb03e9d9f";
+const char bonered_derivation_hash[] = "ce8f373db2069a828a395758f1f7450a2b0fd8f02e07df39861c5f98cb305eb8";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3e9611fbf533fc5cc8337315d0e4f2c1437f890c72eccbe8e951dd90651f89f4
+ * Derivation hash: dce20b1ab56f0a6c3eb2f3eb45b58e0fc8fe123a85978feef08349f841c26d3a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3e9611fbf533fc5cc8337315d0e4f2c1437f890c72eccbe8e951dd90651f89f4";
+const char bonered_derivation_hash[] = "dce20b1ab56f0a6c3eb2f3eb45b58e0fc8fe123a85978feef08349f841c26d3a";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a0b93f4aa28c4b219b2a44fd2b7f9407565937819298b85a3d957a83618513fa
+ * Derivation hash: 073db9a0da9e6b75ec12f5edf6c62124cc214d6be2811bdd18ed91e5e366ee75
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a0b93f4aa28c4b219b2a44fd2b7f9407565937819298b85a3d957a83618513fa";
+const char bonered_derivation_hash[] = "073db9a0da9e6b75ec12f5edf6c62124cc214d6be2811bdd18ed91e5e366ee75";
 int bonered_abi(void) { return 3; }
 #endif
 

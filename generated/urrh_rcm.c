@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 78967d503cfb3c68cfb03f3ef31e8cfc803fea595ffe86bd1a740f2f31bef637
+ * Derivation hash: 7d48914ca7de8cc9a878849626affa8410a698d3a2c1d20a72b6876db2e50e9b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "78967d503cfb3c68cfb03f3ef31e8cfc803fea595ffe86bd1a740f2f31bef637";
+const char bonered_derivation_hash[] = "7d48914ca7de8cc9a878849626affa8410a698d3a2c1d20a72b6876db2e50e9b";
 int bonered_abi(void) { return 3; }
 #endif
 

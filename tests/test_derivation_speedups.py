@@ -136,3 +136,21 @@ def test_jacobian_determinant_is_sympy_s_expanded_determinant_term_for_term():
         want = sp.expand(sp.Matrix(exprs).jacobian([u1, u2, u3]).det(method="berkowitz"))
         got = jacobian_determinant(exprs, (u1, u2, u3))
         assert sp.srepr(got) == sp.srepr(want)
+
+
+def test_numeric_coordinates_are_subs_of_the_whole_configuration_bit_for_bit():
+    """mobility.chains._numeric gives each coordinate only its own symbols' values: the
+    same floats as ``subs`` of the whole configuration (subs puts them in one after another
+    in one sorted order, in which the others are no-ops)."""
+    import numpy as np
+
+    from bonered_alg.mobility.chains import _numeric
+
+    syms = sp.symbols("s0:12", real=True)
+    rng = np.random.default_rng(3)
+    vals = {s: float(v) for s, v in zip(syms, rng.uniform(-2, 2, len(syms)))}
+    point = [(1 + syms[0] ** 2) * syms[3] / 7 - sp.Rational(2, 3) * syms[5] * syms[0],
+             syms[11] * (syms[2] - syms[7]) ** 3 + 0.1 * syms[2], sp.Integer(4),
+             sp.sqrt(3) * syms[4] * syms[9] / (1 + syms[9] ** 2)]
+    want = np.array([float(sp.sympify(c).subs(vals)) for c in point])
+    assert np.array_equal(_numeric(point, vals), want)

@@ -193,10 +193,9 @@ def _without_spurious_factors(g: sp.Expr, v: sp.Symbol) -> sp.Expr:
 def _candidate(g: sp.Expr, v: sp.Symbol, memo: dict):
     """``(ops, degree, coefficients)`` of ``g`` as a polynomial in ``v`` (coefficients of
     ``v, 1`` for degree 1, of ``v^2, v, 1`` for degree 2; ops and coefficients None for
-    another degree), after
-    removing the factors that vanish for no real ``v``; computed once per generator and
-    variable (a ``Poly`` of a large generator takes long, and :func:`_steps` asks again in
-    every round)."""
+    another degree), after removing the factors that vanish for no real ``v``; computed
+    once per generator and variable (a ``Poly`` of a large generator takes long, and
+    :func:`_steps` asks again in every round)."""
     key = (g, v)
     if key not in memo:
         coeffs = _coefficients_in(g, v)

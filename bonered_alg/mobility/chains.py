@@ -40,7 +40,13 @@ def spatial_twist(g: np.ndarray, dg: np.ndarray) -> np.ndarray:
 
 
 def _numeric(point, vals) -> np.ndarray:
-    out = [sp.sympify(c).subs(vals) for c in point]
+    """The coordinates at ``vals`` (symbol -> number), as floats.  Each coordinate gets only
+    the values of its own symbols: ``subs`` puts them in one after another in its sorted
+    order, which the others would only lengthen (sorting and sympifying the whole
+    configuration for every coordinate)."""
+    out = []
+    for c in map(sp.sympify, point):
+        out.append(c.subs({s: vals[s] for s in c.free_symbols if s in vals}))
     stray = sorted({str(s) for c in out for s in c.free_symbols})
     if stray:
         raise ValueError(f"no value for {stray} at the configuration")
