@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6c9e9fe9411ce230a3608afb0a9e60c1d16edfc92b2b7f5706e6f9fa71b752a6
+ * Derivation hash: 84dd035a4b133262b004b15ae52f15947df5a9fd4c888d0109ba2616ef03b9f0
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6c9e9fe9411ce230a3608afb0a9e60c1d16edfc92b2b7f5706e6f9fa71b752a6";
+const char bonered_derivation_hash[] = "84dd035a4b133262b004b15ae52f15947df5a9fd4c888d0109ba2616ef03b9f0";
 int bonered_abi(void) { return 3; }
 #endif
 

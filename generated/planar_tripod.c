@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1f8085cdb1ab494e9226df28413e271e19776c1230b28c4dda7c2f1f2eca2866
+ * Derivation hash: 32282a7ca559054f5c04bc229e288c956dd0473e02fffa484dba0044fea07e7f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1f8085cdb1ab494e9226df28413e271e19776c1230b28c4dda7c2f1f2eca2866";
+const char bonered_derivation_hash[] = "32282a7ca559054f5c04bc229e288c956dd0473e02fffa484dba0044fea07e7f";
 int bonered_abi(void) { return 3; }
 #endif
 

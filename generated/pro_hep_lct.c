@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ce8f373db2069a828a395758f1f7450a2b0fd8f02e07df39861c5f98cb305eb8
+ * Derivation hash: 1f0d8fcf7ed657077307c99059a79053bdc173252aec2162eb99cd7708d00ee9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ce8f373db2069a828a395758f1f7450a2b0fd8f02e07df39861c5f98cb305eb8";
+const char bonered_derivation_hash[] = "1f0d8fcf7ed657077307c99059a79053bdc173252aec2162eb99cd7708d00ee9";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dce20b1ab56f0a6c3eb2f3eb45b58e0fc8fe123a85978feef08349f841c26d3a
+ * Derivation hash: 880faafb6401be9461acae624287edf85468f26ecf2b8578888f11b50e69a5f6
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "dce20b1ab56f0a6c3eb2f3eb45b58e0fc8fe123a85978feef08349f841c26d3a";
+const char bonered_derivation_hash[] = "880faafb6401be9461acae624287edf85468f26ecf2b8578888f11b50e69a5f6";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 073db9a0da9e6b75ec12f5edf6c62124cc214d6be2811bdd18ed91e5e366ee75
+ * Derivation hash: be0563f308fc20959e1846ee2f9e922d7c31f50613029838de1ec81f9848b75f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "073db9a0da9e6b75ec12f5edf6c62124cc214d6be2811bdd18ed91e5e366ee75";
+const char bonered_derivation_hash[] = "be0563f308fc20959e1846ee2f9e922d7c31f50613029838de1ec81f9848b75f";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7d48914ca7de8cc9a878849626affa8410a698d3a2c1d20a72b6876db2e50e9b
+ * Derivation hash: d352716c266723296c9afb32204458f5e78154f2314b9fe0cfe650c2f0cf2a8a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7d48914ca7de8cc9a878849626affa8410a698d3a2c1d20a72b6876db2e50e9b";
+const char bonered_derivation_hash[] = "d352716c266723296c9afb32204458f5e78154f2314b9fe0cfe650c2f0cf2a8a";
 int bonered_abi(void) { return 3; }
 #endif
 

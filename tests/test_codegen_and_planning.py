@@ -137,3 +137,26 @@ def test_the_planner_demotes_a_generator_that_vanishes_at_home():
     assert sp.expand(plain[0].generator - gens[0][1]) == 0
     probed = plan(gens, [q], "test", probe={x: sp.Integer(0), y: sp.Integer(2)})
     assert sp.expand(probed[0].generator - gens[1][1]) == 0
+
+
+def test_generated_functions_name_only_what_their_module_defines():
+    """Every global a generated function reads is defined in its module or a builtin: the
+    kernels of planar_tripod's and tripod_planar's other forward-kinematics charts read the
+    symbol s3 (sqrt 3), left in them when the algebraic constants were put in the other
+    plans and not in these, a NameError whenever the forward kinematics needed them."""
+    import builtins
+    import dis
+    import importlib
+    import inspect
+
+    from bonered_alg.registry import MECHANISMS
+
+    for name in MECHANISMS:
+        m = importlib.import_module(f"bonered_alg.generated.{name}")
+        for fname, fn in vars(m).items():
+            if not inspect.isfunction(fn) or fn.__module__ != m.__name__:
+                continue
+            read = {ins.argval for ins in dis.get_instructions(fn)
+                    if ins.opname in ("LOAD_GLOBAL", "LOAD_NAME")}
+            undefined = {g for g in read if g not in vars(m) and not hasattr(builtins, g)}
+            assert not undefined, (name, fname, sorted(undefined))

@@ -126,3 +126,25 @@ def test_mode_zero_is_the_declared_physical_branch(name):
     for joint, value in m.PHYSICAL_BRANCH:
         got = q[m.JOINTS.index(joint)]
         assert abs(got - value) <= 1e-3 * (1 + abs(value)), (joint, got, value)
+
+
+@pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar", "pro_hep_lct", "urrh_rcm",
+                                  "lamina_milling"])
+def test_fk_of_a_batch_with_unreachable_joints(name):
+    """Joints that are NaN (``ik`` of an unreachable pose) in a batch: their modes are NaN
+    with the status INVALID_INPUT, and the other rows are what they are alone.  With a NaN
+    row, planar_tripod's and tripod_planar's forward kinematics take their other charts,
+    whose kernels raised a NameError (see test_codegen_and_planning)."""
+    import importlib
+
+    m = importlib.import_module(f"bonered_alg.generated.{name}")
+    q = np.atleast_2d(m.ik(np.asarray(m.HOME, dtype=float), limits=False))
+    batch = np.vstack([q, np.full_like(q, np.nan), q])
+    sols, status = m.fk(batch), m.fk_status(batch)
+    alone, alone_status = m.fk(q[0]), m.fk_status(q[0])
+    assert np.isnan(sols[1]).all() and (status[1] == st.INVALID_INPUT).all()
+    for k in (0, 2):
+        assert np.array_equal(sols[k], alone, equal_nan=True)
+        assert np.array_equal(status[k], alone_status)
+    home = np.asarray(m.HOME, dtype=float)
+    assert np.nanmin(np.abs(alone - home).max(axis=-1)) < 1e-8

@@ -209,6 +209,7 @@ def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
         **{**spec.__dict__,
            "steps": [step(st) for st in spec.steps],
            "fk_steps": [step(st) for st in spec.fk_steps],
+           "fk_charts": [[step(st) for st in chart] for chart in spec.fk_charts],
            "fk_system": [sp.sympify(g).xreplace(c) for g in spec.fk_system],
            "singularities": [(n, sp.sympify(e).xreplace(c), m) for n, e, m in spec.singularities],
            "limits": [(lim[0], sp.sympify(lim[1]).xreplace(c), *lim[2:]) for lim in spec.limits],

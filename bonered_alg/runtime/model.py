@@ -732,7 +732,12 @@ class Model:
     def fk_all(self, q, params=None, with_status=False, func="fk"):
         q = self.algebraic(self._fk_joints(func, q))
         par = check.parameters(self, func, params or {})
-        return fk_solver.solve_all(self, q, par, with_status)
+        poses, status = fk_solver.solve_all(self, q, par, with_status)
+        if with_status:  # every mode of non-finite joints: NaN, and the input is why
+            invalid = ~numpy.isfinite(q).all(axis=-1)
+            if invalid.any():
+                status[invalid] = INVALID_INPUT
+        return poses, status
 
     # ------------------------------------------------------------ other functions
     def pose_function(self, func, kern, pose, params=None):

@@ -29,7 +29,8 @@ STATUS = {
                  "joint values are valid, the Jacobian is not",
     INPUT_SINGULAR: "input singularity: a pivot of Ji vanishes (det Ji = 0); the joint "
                     "value is undetermined or unbounded and dq/dX is not defined",
-    INVALID_INPUT: "non-finite pose coordinate",
+    INVALID_INPUT: "non-finite input: a pose coordinate (inverse kinematics) or a joint "
+                   "(forward kinematics)",
     STROKE_LIMIT: "an actuator stroke is outside its range (LIMITS, kind 'stroke')",
     PASSIVE_JOINT_LIMIT: "a passive joint (an angle, or a collar's slide) is outside its "
                          "range (LIMITS, kind 'passive')",
