@@ -469,12 +469,11 @@ def pro_hep_lct_tool_benchmarks(n=100_000, n_fk=10_000, sympy_budget=120.0):
     return out
 
 
-def hand_written_benchmarks(n=1_000_000):
-    """Issue 15's baseline: the generated functions (limits off) against hand-written numpy
-    of the same closed forms (bench/hand_written.py), IK and IK + Jacobian, on the same
-    poses: the numpy runtime (``fast=False``) and the compiled fast path (``fast=True``, all
-    cores); ratio = hand-written time / generated time (>= 1: the generated code is as
-    fast).  IK + Jacobian is ``ik_and_jacobian`` (one solve for both)."""
+def _hand_written_cases(n, rng):
+    """``(cases, six)``: per mechanism ``(generated module, poses (n, len(POSE)), parameters,
+    hand(jacobian))``, ``n`` poses in its workspace and the hand-written numpy of
+    bench/hand_written.py on the same poses; ``six``: tripod_planar's poses in 001's own
+    coordinates (the hand form's; the generated module's are converted)."""
     import hand_written as hw
     from bonered_alg.generated import lamina_milling as lm
     from bonered_alg.generated import planar_tripod as pt
@@ -484,7 +483,6 @@ def hand_written_benchmarks(n=1_000_000):
     from bonered_alg.generated import urrh_rcm as ur
     from independent_pro_hep_lct import GEOMETRY as G
 
-    rng = np.random.default_rng(15)
     six = np.column_stack([rng.uniform(-40, 40, n), rng.uniform(-40, 40, n),
                            rng.uniform(190, 235, n), rng.uniform(-0.15, 0.15, n),
                            rng.uniform(-0.15, 0.15, n), rng.uniform(-0.6, 0.6, n)])
@@ -493,7 +491,7 @@ def hand_written_benchmarks(n=1_000_000):
     ur_poses = reachable_urrh_rcm(n, rng)
     lm_poses = np.column_stack([rng.uniform(-15, 15, n), rng.uniform(100, 125, n),
                                 rng.uniform(20, 90, n)])  # 003: around Table 2's path
-    cases = {
+    return {
         "planar_tripod": (pt, six, {}, lambda j: hw.planar_tripod(six, jacobian=j)),
         "stewart": (st, lifted, {}, lambda j: hw.stewart(lifted, jacobian=j)),
         "pro_hep_lct": (ph, ph_poses, G,
@@ -504,7 +502,20 @@ def hand_written_benchmarks(n=1_000_000):
                      lambda j: hw.urrh_rcm(ur_poses, ur.PARAMETERS, jacobian=j)),
         "lamina_milling": (lm, lm_poses, {},
                            lambda j: hw.lamina_milling(lm_poses, lm.PARAMETERS, jacobian=j)),
-    }
+    }, six
+
+
+def hand_written_benchmarks(n=1_000_000):
+    """Issue 15's baseline: the generated functions (limits off) against hand-written numpy
+    of the same closed forms (bench/hand_written.py), IK and IK + Jacobian, on the same
+    poses: the numpy runtime (``fast=False``) and the compiled fast path (``fast=True``, all
+    cores); ratio = hand-written time / generated time (>= 1: the generated code is as
+    fast).  IK + Jacobian is ``ik_and_jacobian`` (one solve for both)."""
+    import hand_written as hw
+    from bonered_alg.generated import urrh_rcm as ur
+
+    rng = np.random.default_rng(15)
+    cases, six = _hand_written_cases(n, rng)
     out = {"poses": n, "threads": compiled.threads()}
     for name, (m, poses, par, hand) in cases.items():
         row = {"poses": len(poses)}
@@ -556,6 +567,33 @@ def hand_written_benchmarks(n=1_000_000):
             row.update(_statics_benchmark(m, poses[: len(poses) // 10], rng, hw))
         out[name] = row
         print(name, row, flush=True)
+    return out
+
+
+def one_pose_benchmarks(calls=2000):
+    """The cost of one call on one pose (a control loop's use): microseconds per call of the
+    hand-written numpy, the numpy runtime and the compiled fast path, IK and IK + Jacobian,
+    limits off (median over 7 interleaved rounds of ``calls`` calls each)."""
+    out = {"calls_per_round": calls}
+    for name, (m, poses, par, hand) in _hand_written_cases(1, np.random.default_rng(15))[0].items():
+        row = {}
+        for label, jac in (("ik", False), ("ik_plus_jacobian", True)):
+            gen = m.ik_and_jacobian if jac else m.ik
+            fns = [lambda h=hand, j=jac: h(j)] + [
+                lambda g=gen, p=poses, k=par, f=fast: g(p, limits=False, fast=f, **k)
+                for fast in (False, True)]
+            for fn in fns:
+                fn()  # built and warm before timing
+
+            def calls_of(fn):
+                return lambda: [fn() for _ in range(calls)]
+            times = interleaved_medians([calls_of(fn) for fn in fns], 7)
+            for who, t in zip(("hand_written", "numpy", "compiled"), times):
+                row[f"{who}_{label}_us"] = t / calls * 1e6
+            for who, t in zip(("numpy", "compiled"), times[1:]):
+                row[f"{who}_{label}_ratio_vs_hand_written"] = times[0] / t
+        out[name] = row
+        print(name, {k: round(v, 2) for k, v in row.items()}, flush=True)
     return out
 
 
@@ -754,7 +792,8 @@ def main():
     ap.add_argument("--poses", type=int, default=1_000_000)
     ap.add_argument("--sympy-budget", type=float, default=60.0)
     ap.add_argument("--only", choices=["workspace", "pro_hep_lct_tool", "hand_written",
-                                       "membership", "derive", "fast_path_build"],
+                                       "one_pose", "membership", "derive",
+                                       "fast_path_build"],
                     default=None,
                     help="re-run one section and merge it into the existing --out file")
     args = ap.parse_args()
@@ -763,6 +802,7 @@ def main():
         results[args.only] = {"workspace": workspace_benchmarks,
                               "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks,
                               "hand_written": hand_written_benchmarks,
+                              "one_pose": one_pose_benchmarks,
                               "membership": membership_benchmarks,
                               "derive": derive_benchmarks,
                               "fast_path_build": fast_path_build_benchmarks}[args.only]()
@@ -783,6 +823,7 @@ def main():
         "tripod_planar": tripod_planar_benchmarks(args.poses),
         "workspace": workspace_benchmarks(),
         "hand_written": hand_written_benchmarks(),
+        "one_pose": one_pose_benchmarks(),
         "membership": membership_benchmarks(),
         "fast_path_build": fast_path_build_benchmarks(),
         "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks(sympy_budget=args.sympy_budget),

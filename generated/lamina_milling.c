@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 84dd035a4b133262b004b15ae52f15947df5a9fd4c888d0109ba2616ef03b9f0
+ * Derivation hash: c32aa86196edecf70cbc080c66d1033b0e3402fba3ed786d9533359ee9c1caa8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "84dd035a4b133262b004b15ae52f15947df5a9fd4c888d0109ba2616ef03b9f0";
+const char bonered_derivation_hash[] = "c32aa86196edecf70cbc080c66d1033b0e3402fba3ed786d9533359ee9c1caa8";
 int bonered_abi(void) { return 3; }
 #endif
 

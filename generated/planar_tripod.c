@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 32282a7ca559054f5c04bc229e288c956dd0473e02fffa484dba0044fea07e7f
+ * Derivation hash: 1c80a4256c10318210e2a5e3a52b7b7db7183a4ee0322561e54b81000d91383d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "32282a7ca559054f5c04bc229e288c956dd0473e02fffa484dba0044fea07e7f";
+const char bonered_derivation_hash[] = "1c80a4256c10318210e2a5e3a52b7b7db7183a4ee0322561e54b81000d91383d";
 int bonered_abi(void) { return 3; }
 #endif
 

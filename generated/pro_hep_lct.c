@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1f0d8fcf7ed657077307c99059a79053bdc173252aec2162eb99cd7708d00ee9
+ * Derivation hash: 8947f7adea65c68f06b9506e3a93a233abefe634fea6b45e8622b5fd46c8fe0f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1f0d8fcf7ed657077307c99059a79053bdc173252aec2162eb99cd7708d00ee9";
+const char bonered_derivation_hash[] = "8947f7adea65c68f06b9506e3a93a233abefe634fea6b45e8622b5fd46c8fe0f";
 int bonered_abi(void) { return 3; }
 #endif
 

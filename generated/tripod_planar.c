@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: be0563f308fc20959e1846ee2f9e922d7c31f50613029838de1ec81f9848b75f
+ * Derivation hash: a9ef5dc4fcee19ef7490bf3e2b339a4e633b65de4f9ec369248e5aa6d956e831
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "be0563f308fc20959e1846ee2f9e922d7c31f50613029838de1ec81f9848b75f";
+const char bonered_derivation_hash[] = "a9ef5dc4fcee19ef7490bf3e2b339a4e633b65de4f9ec369248e5aa6d956e831";
 int bonered_abi(void) { return 3; }
 #endif
 

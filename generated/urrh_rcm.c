@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d352716c266723296c9afb32204458f5e78154f2314b9fe0cfe650c2f0cf2a8a
+ * Derivation hash: 7bcff1cc8b7f3d0cd0341703d28b75cf38fbc23b63482e02dce47a7dba8cb84d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d352716c266723296c9afb32204458f5e78154f2314b9fe0cfe650c2f0cf2a8a";
+const char bonered_derivation_hash[] = "7bcff1cc8b7f3d0cd0341703d28b75cf38fbc23b63482e02dce47a7dba8cb84d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -111,6 +111,41 @@ def test_argument_errors_name_the_mechanism_and_what_was_expected():
         toy_model(fk=runtime.ForwardKinematics(note="none here")).fk_all(np.zeros(2))
 
 
+def test_plain_scalar_parameters_are_checked_as_arrays_are():
+    """The float comparisons for plain scalars (check.parameters' shortcut) give the array
+    checks' values and reject what they reject; the checked defaults, kept per model, come
+    back as a fresh list each call."""
+    from bonered_alg.runtime import inputs
+
+    m = toy_model(parameters={"k": 1.0, "r": 2.0, "n": 0.0},
+                  parameter_units={"k": "mm", "r": "mm", "n": "mm"},
+                  parameter_notes={"k": "a", "r": "b", "n": "c"},
+                  parameter_domains={"r": "positive", "n": "nonnegative"})
+    for value in (3, 3.5, np.float64(-2.25), 2**53 + 1, 1e-300):
+        got = inputs.parameters(m, "f", {"k": value})[0]
+        assert isinstance(got, np.ndarray) and got.ndim == 0 and got.dtype == float
+        assert got == np.asarray(value).astype(float)
+    bad = [({"r": 0.0}, ValueError, "'r' must be > 0"), ({"r": -1}, ValueError, "'r' must be > 0"),
+           ({"n": -1e-300}, ValueError, "'n' must be >= 0"),
+           ({"k": float("nan")}, ValueError, "'k' is not finite"),
+           ({"k": -np.inf}, ValueError, "'k' is not finite"),
+           ({"k": True}, TypeError, "booleans"), ({"k": 10**400}, TypeError, "Python objects")]
+    for params, error, text in bad:
+        with pytest.raises(error, match=text):
+            inputs.parameters(m, "f", params)
+    first, second = inputs.parameters(m, "f", {}), inputs.parameters(m, "f", {})
+    assert first is not second and [float(v) for v in first] == [1.0, 2.0, 0.0]
+    assert first.vector.tolist() == [1.0, 2.0, 0.0] and not first.vector.flags.writeable
+    first.clear()
+    assert len(inputs.parameters(m, "f", {})) == 3
+    arrays = inputs.parameters(m, "f", {"k": [1.0, 2.0]})  # an array: no scalar vector
+    assert arrays.vector is None and arrays[0].tolist() == [1.0, 2.0]
+    assert inputs.parameters(m, "f", {"k": 7}).vector.tolist() == [7.0, 2.0, 0.0]
+    assert inputs.parameters(m, "f", {"n": 4})[2] == 4.0  # keywords are never the cache
+    with pytest.raises(ValueError, match="'k' has no value"):  # no default: never cached
+        inputs.parameters(toy_model(parameters={"k": None}), "f", {})
+
+
 def test_api_version_mismatch_is_a_clear_error():
     runtime.require(runtime.API_VERSION, "toy")
     with pytest.raises(ImportError, match="written for runtime API 0.*run `make derive`"):

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import ctypes
 import hashlib
+import math
 import os
 import shutil
 import subprocess
@@ -154,7 +155,9 @@ def _over_threads(n: int, work: int, run) -> None:
     """``run(lo, hi)`` over ``[0, n)``: in one call, or split evenly over up to
     :func:`threads` threads where ``work`` (in poses of ``bonered_solve``) gives each at
     least MIN_PER_THREAD."""
-    k = min(threads(), max(1, work // MIN_PER_THREAD))
+    k = max(1, work // MIN_PER_THREAD)
+    if k > 1:  # reading the environment and the CPU affinity only where it can matter
+        k = min(threads(), k)
     if k == 1:
         run(0, n)
         return
@@ -162,6 +165,23 @@ def _over_threads(n: int, work: int, run) -> None:
     futures = [_executor(k).submit(run, bounds[i], bounds[i + 1]) for i in range(k)]
     for f in futures:
         f.result()
+
+
+def _parameter_vector(par) -> numpy.ndarray:
+    """The parameters as a contiguous float64 array: ``check.parameters``' own where it
+    made one (scalars), else built."""
+    vector = getattr(par, "vector", None)
+    if vector is not None:
+        return vector
+    return numpy.ascontiguousarray([float(v) for v in par], dtype=numpy.float64)
+
+
+def _rows(a: numpy.ndarray) -> tuple[int, int]:
+    """``(address of row 0, bytes per row)`` of a C-contiguous array: row ``lo`` starts at
+    ``address + lo * bytes`` (what ``a[lo:].ctypes.data`` gives, without building a ctypes
+    view per call)."""
+    assert a.flags.c_contiguous
+    return a.ctypes.data, a.itemsize * (math.prod(a.shape[1:]))
 
 
 def _executor(n: int) -> ThreadPoolExecutor:
@@ -268,18 +288,20 @@ class FastPath:
         in C), else the algebra's tan-half-angles."""
         lib = self.library()
         shape = pose.shape[:-1]
-        n = int(numpy.prod(shape, dtype=numpy.int64))
+        n = math.prod(shape)
         flat = numpy.ascontiguousarray(pose, dtype=numpy.float64).reshape(n, self.n_pose)
-        parv = numpy.ascontiguousarray([float(v) for v in par], dtype=numpy.float64)
+        parv = _parameter_vector(par)
         q = numpy.empty((n, self.n_joints))
         status = numpy.empty(n, dtype=numpy.int8)
         jac = numpy.empty((n, self.n_joints, self.n_pose)) if jacobian else None
+        # addresses of row 0 and bytes per row (rows lo: start at base + lo * row)
+        (fp, fr), (qp, qr), (sp, sr) = (_rows(a) for a in (flat, q, status))
+        jp, jr = _rows(jac) if jacobian else (None, 0)
+        pp, mode, limits, public = parv.ctypes.data, int(mode), int(bool(limits)), int(bool(public))
 
         def run(lo: int, hi: int) -> None:
-            lib.bonered_solve(
-                hi - lo, flat[lo:].ctypes.data, parv.ctypes.data, int(mode),
-                int(bool(limits)), q[lo:].ctypes.data, status[lo:].ctypes.data,
-                jac[lo:].ctypes.data if jacobian else None, int(bool(public)))
+            lib.bonered_solve(hi - lo, fp + lo * fr, pp, mode, limits, qp + lo * qr,
+                              sp + lo * sr, None if jp is None else jp + lo * jr, public)
 
         _over_threads(n, n, run)
         return (q.reshape(shape + (self.n_joints,)), status.reshape(shape),
@@ -295,14 +317,15 @@ class FastPath:
         if not hasattr(lib, "bonered_solve_all"):
             return None
         shape = pose.shape[:-1]
-        n = int(numpy.prod(shape, dtype=numpy.int64))
+        n = math.prod(shape)
         flat = numpy.ascontiguousarray(pose, dtype=numpy.float64).reshape(n, self.n_pose)
-        parv = numpy.ascontiguousarray([float(v) for v in par], dtype=numpy.float64)
+        parv = _parameter_vector(par)
         q = numpy.empty((n, modes, self.n_joints))
+        (fp, fr), (qp, qr) = _rows(flat), _rows(q)
+        pp, limits, public = parv.ctypes.data, int(bool(limits)), int(bool(public))
 
         def run(lo: int, hi: int) -> None:
-            lib.bonered_solve_all(hi - lo, flat[lo:].ctypes.data, parv.ctypes.data,
-                                  int(bool(limits)), q[lo:].ctypes.data, int(bool(public)))
+            lib.bonered_solve_all(hi - lo, fp + lo * fr, pp, limits, qp + lo * qr, public)
 
         _over_threads(n, n * modes, run)  # a pose costs about ``modes`` poses of solve
         return q.reshape(shape + (modes, self.n_joints))
@@ -324,7 +347,7 @@ class FastPath:
         coord = numpy.array([a[0] for a in axes], dtype=numpy.intc)
         fixed = numpy.ascontiguousarray(fixed, dtype=numpy.float64)
         modes = numpy.array(list(modes), dtype=numpy.intc)
-        parv = numpy.ascontiguousarray([float(v) for v in par], dtype=numpy.float64)
+        parv = _parameter_vector(par)
         axis_lo = numpy.full(naxes, numpy.inf)
         axis_hi = numpy.full(naxes, -numpy.inf)
         reasons = numpy.zeros(128, dtype=numpy.int64)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy
 
 
@@ -25,16 +27,65 @@ DOMAIN_TEST = {"positive": (lambda v: v > 0, "> 0"),
                "nonnegative": (lambda v: v >= 0, ">= 0")}
 
 
-def parameters(model, func: str, params: dict) -> list:
+# scalars checked with float comparisons (bool, a subclass of int, fails the exact type
+# test and goes through _numeric, which rejects it)
+_PLAIN_SCALARS = (float, int, numpy.float64)
+# id(model) -> (model, its checked default parameters): checked once per model (the model
+# kept, so that its id is not reused while the entry lives)
+_DEFAULTS: dict[int, tuple] = {}
+
+
+class Parameters(list):
+    """:func:`parameters`' result: the checked values in ``model.parameters`` order, and
+    ``vector``, the same numbers as a float64 array where every value is a scalar (what
+    the compiled fast path takes), else None."""
+
+    __slots__ = ("vector",)
+
+    def __init__(self, values, vector=None):
+        super().__init__(values)
+        self.vector = vector
+
+    @classmethod
+    def of(cls, values: list) -> Parameters:
+        scalar = all(v.ndim == 0 for v in values)
+        vector = numpy.array([float(v) for v in values]) if scalar else None
+        if vector is not None:
+            vector.flags.writeable = False
+        return cls(values, vector)
+
+
+def parameters(model, func: str, params: dict) -> Parameters:
     """The geometric parameters in ``model.parameters`` order, keywords overriding defaults;
-    each finite and within its domain (``model.parameter_domains``: a length is > 0)."""
-    unknown = sorted(set(params) - set(model.parameters))
-    if unknown:
-        raise TypeError(f"{model.mechanism}.{func}: unknown geometric parameter(s) {unknown}; "
-                        f"expected some of {list(model.parameters)}")
+    each finite and within its domain (``model.parameter_domains``: a length is > 0).
+
+    A plain scalar (float, int, numpy.float64) within its domain is checked with float
+    comparisons and passed on as a 0-d float array, the value the array checks give it
+    (on one pose those checks cost several times the kinematics); anything else, and any
+    scalar that fails, takes the array checks and their errors.  The defaults are checked
+    once per model."""
+    if not params:
+        known = _DEFAULTS.get(id(model))
+        if known is not None and known[0] is model:
+            return Parameters(known[1], known[1].vector)
+    else:
+        unknown = sorted(set(params) - set(model.parameters))
+        if unknown:
+            raise TypeError(f"{model.mechanism}.{func}: unknown geometric parameter(s) "
+                            f"{unknown}; expected some of {list(model.parameters)}")
+    domains = model.parameter_domains or {}
     out = []
     for name, default in model.parameters.items():
-        value = params.get(name, default)
+        value = params.get(name, default) if params else default
+        if type(value) in _PLAIN_SCALARS:
+            try:
+                v = float(value)
+            except OverflowError:  # an int beyond floats: the array checks say so
+                v = math.nan
+            test = DOMAIN_TEST.get(domains.get(name, "real"))
+            if math.isfinite(v) and (test is None or test[0](v)):
+                out.append(numpy.array(v))
+                continue
         if value is None:
             raise ValueError(
                 f"{model.mechanism}.{func}: geometric parameter {name!r} has no value "
@@ -44,7 +95,7 @@ def parameters(model, func: str, params: dict) -> list:
         if not numpy.all(numpy.isfinite(value)):
             raise ValueError(f"{model.mechanism}.{func}: geometric parameter {name!r} is not "
                              "finite")
-        domain = (model.parameter_domains or {}).get(name, "real")
+        domain = domains.get(name, "real")
         if domain in DOMAIN_TEST:
             test, text = DOMAIN_TEST[domain]
             if not numpy.all(test(value)):
@@ -53,7 +104,10 @@ def parameters(model, func: str, params: dict) -> list:
                                  f"{value if value.ndim == 0 else value[~test(value)][:3]}"
                                  f" {model.parameter_units[name]}")
         out.append(value)
-    return out
+    out = Parameters.of(out)
+    if not params:  # the defaults passed: the same values on every later call
+        _DEFAULTS[id(model)] = (model, out)
+    return Parameters(out, out.vector)
 
 
 def coordinates(model, func: str, values, names, what: str) -> numpy.ndarray:

@@ -193,7 +193,7 @@ class Model:
         why = ""
         if self.fast is None:
             why = "this module was not imported from a file with its generated .c beside it"
-        elif any(numpy.ndim(v) for v in par):
+        elif getattr(par, "vector", None) is None and any(numpy.ndim(v) for v in par):
             why = "geometric parameters given as arrays (the fast path takes scalars)"
         elif self.fast.library() is None:
             why = self.fast.reason
@@ -502,20 +502,17 @@ class Model:
         flat_pose = pose.reshape(n, pose.shape[-1])
         flat_q = q.reshape(n, q.shape[-1])
 
-        def flat(values):
-            return [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
-                    for v in values]
-        flat_par = flat(par)
+        par_of_chunk = _parameter_chunks(par, shape, n)
         out = None
         nps = 2 * len(self.joints)
         with numpy.errstate(all="ignore"):
-            flat_shared = flat(self.pose_values(pose, par) if shared is None else shared)
+            shared_of_chunk = _parameter_chunks(
+                self.pose_values(pose, par) if shared is None else shared, shape, n)
             for lo in range(0, n, JAC_CHUNK):
                 hi = min(n, lo + JAC_CHUNK)
-                values = self.jac(*[v if numpy.ndim(v) == 0 else v[lo:hi] for v in flat_shared],
+                values = self.jac(*shared_of_chunk(lo, hi),
                                   *contiguous_columns(flat_pose[lo:hi]),
-                                  *columns(flat_q[lo:hi]),
-                                  *[v if numpy.ndim(v) == 0 else v[lo:hi] for v in flat_par])
+                                  *columns(flat_q[lo:hi]), *par_of_chunk(lo, hi))
                 if out is None:
                     out = numpy.empty((len(values) if into is None else nps, n))
                 for k, v in enumerate(values):
@@ -768,12 +765,11 @@ def _chunked(pose, par, fn):
     shape = pose.shape[:-1]
     n = int(numpy.prod(shape, dtype=numpy.int64))
     flat = pose.reshape(n, pose.shape[-1])
-    par_flat = [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
-                for v in par]
+    par_of_chunk = _parameter_chunks(par, shape, n)
     outs = None
     for lo in range(0, max(n, 1), CHUNK):  # an empty batch: one empty chunk
         hi = min(n, lo + CHUNK)
-        part = fn(flat[lo:hi], [v if numpy.ndim(v) == 0 else v[lo:hi] for v in par_flat])
+        part = fn(flat[lo:hi], par_of_chunk(lo, hi))
         if outs is None:
             outs = [None if r is None else numpy.empty((n,) + r.shape[1:], dtype=r.dtype)
                     for r in part]
@@ -791,14 +787,32 @@ def _chunked_into(pose, par, specs, fn):
     shape = pose.shape[:-1]
     n = int(numpy.prod(shape, dtype=numpy.int64))
     flat = pose.reshape(n, pose.shape[-1])
-    par_flat = [v if numpy.ndim(v) == 0 else numpy.broadcast_to(v, shape).reshape(n)
-                for v in par]
+    par_of_chunk = _parameter_chunks(par, shape, n)
     outs = [numpy.empty((n,) + tail, dtype=dtype) for tail, dtype in specs]
     for lo in range(0, max(n, 1), CHUNK):
         hi = min(n, lo + CHUNK)
-        fn(flat[lo:hi], [v if numpy.ndim(v) == 0 else v[lo:hi] for v in par_flat],
-           *[o[lo:hi] for o in outs])
+        fn(flat[lo:hi], par_of_chunk(lo, hi), *[o[lo:hi] for o in outs])
     return tuple(o.reshape(shape + o.shape[1:]) for o in outs)
+
+
+def _parameter_chunks(par, shape, n):
+    """``chunk(lo, hi)``: the values ``par`` (parameters, or the poses' shared values) of
+    poses ``lo:hi`` of the ``n`` flattened poses of leading ``shape``; scalars as they are
+    (the same list each time when every one is), arrays broadcast to the poses and
+    sliced."""
+    arrays = [i for i, v in enumerate(par) if numpy.ndim(v)]
+    if not arrays:
+        return lambda lo, hi: par
+    flat = list(par)
+    for i in arrays:
+        flat[i] = numpy.broadcast_to(par[i], shape).reshape(n)
+
+    def chunk(lo, hi):
+        out = list(flat)
+        for i in arrays:
+            out[i] = flat[i][lo:hi]
+        return out
+    return chunk
 
 
 def linear_candidates(values):
