@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7bcff1cc8b7f3d0cd0341703d28b75cf38fbc23b63482e02dce47a7dba8cb84d
+ * Derivation hash: f37e102e80356469e730017bb43e72dda52b2dc51d9d1723320b7a1290f6c153
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7bcff1cc8b7f3d0cd0341703d28b75cf38fbc23b63482e02dce47a7dba8cb84d";
+const char bonered_derivation_hash[] = "f37e102e80356469e730017bb43e72dda52b2dc51d9d1723320b7a1290f6c153";
 int bonered_abi(void) { return 3; }
 #endif
 

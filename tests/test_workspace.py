@@ -487,6 +487,53 @@ def test_home_component_on_a_synthetic_grid():
         home_component(res, {"f": s}, {"x": 0.0, "y": 0.0})
 
 
+def test_sign_sides_built_once_give_each_mask_its_own_component():
+    """planar_stroke_000 labels hundreds of masks of one scan with the signs around home
+    built once (``SignSides``): each mask's component, bounding counts and lists are those
+    of home_component building them itself; sides of other signs or another home sample are
+    an error."""
+    from bonered_alg.workspace.components import SignSides, home_component
+    from bonered_alg.workspace.membership import Criteria
+    from bonered_alg.workspace.scan import ScanResult
+
+    rng = np.random.default_rng(5)
+    grid = Grid(POSE, (Axis("x", 0.0, 10.0, 11), Axis("y", 0.0, 12.0, 13)),
+                {"z": 200.0, "alpha": 0.0, "beta": 0.0, "gamma": 0.0})
+    signs = {"f": np.where(rng.random((11, 13)) < 0.15, -1, 1).astype(np.int8),
+             "g": np.where(np.arange(11)[:, None] > 7, -1, 1) * np.ones((1, 13), np.int8),
+             "zero_at_home": rng.integers(-1, 2, (11, 13)).astype(np.int8)}
+    signs["f"][0, 0] = signs["g"][0, 0] = 1
+    signs["zero_at_home"][0, 0] = 0
+    sides = SignSides(signs, (0, 0))
+    assert sides.used == ("f", "g") and sides.skipped == ("zero_at_home",)
+    for k in range(6):
+        mask = rng.random((11, 13)) < 0.5 + 0.1 * k
+        mask[0, 0] = True
+        res = ScanResult("synthetic", grid, Criteria(), {}, count=int(mask.sum()), mask=mask)
+        alone = home_component(res, signs, {"x": 0.0, "y": 0.0})
+        shared = home_component(res, signs, {"x": 0.0, "y": 0.0}, sides)
+        assert np.array_equal(alone.result.mask, shared.result.mask)
+        assert (alone.count, alone.reachable_elsewhere, alone.polynomials,
+                alone.vanishing_at_home, alone.result.ranges) == (
+            shared.count, shared.reachable_elsewhere, shared.polynomials,
+            shared.vanishing_at_home, shared.result.ranges)
+        assert alone.bounding == shared.bounding
+        # the counts by the definition: component samples within two steps (one axis) of
+        # the opposite sign
+        for name in ("f", "g"):
+            other = np.pad(signs[name] == -1, 2)
+            near = np.zeros_like(other)
+            for dx, dy in ((1, 0), (2, 0), (-1, 0), (-2, 0), (0, 1), (0, 2), (0, -1), (0, -2)):
+                near |= np.roll(np.roll(other, dx, 0), dy, 1)
+            want = int(np.count_nonzero(shared.result.mask & near[2:-2, 2:-2]))
+            assert shared.bounding[name] == want
+    res.mask[1, 0] = True  # another home sample, reachable
+    with pytest.raises(ValueError, match="other signs or another home sample"):
+        home_component(res, signs, {"x": 1.0, "y": 0.0}, sides)
+    with pytest.raises(ValueError, match="other signs or another home sample"):
+        home_component(res, dict(signs), {"x": 0.0, "y": 0.0}, sides)
+
+
 def test_scan_threads_run_every_chunk_once_and_raise_the_first_error(monkeypatch):
     """scan._run_threads: each task's result exactly once, progress counted up to the total;
     an error in one chunk stops the workers and reaches the caller."""

@@ -21,7 +21,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..workspace.components import HomeNotReachable, home_component, signs_near_reachable
+from ..workspace.components import (
+    HomeNotReachable,
+    SignSides,
+    home_component,
+    nearest_index,
+    signs_near_reachable,
+)
 from ..workspace.membership import Criteria, load_module
 from ..workspace.scan import scan
 from .bone_reduction import TABLE2_000, slice_extents, table2_setups, xyg_grid
@@ -79,12 +85,14 @@ class _Search:
         self.q_lo = self.q_lo.reshape(self.res.grid.shape)
         self.q_hi = self.q_hi.reshape(self.res.grid.shape)
         self.signs = signs
+        # the signs around home, read for every candidate: built once
+        self.sides = SignSides(signs, nearest_index(self.res, HOME))
 
     def ranges(self, q_min: float, q_max: float) -> tuple[dict[str, float], float] | None:
         mask = self.res.mask & (self.q_lo >= q_min) & (self.q_hi <= q_max)
         cand = replace(self.res, mask=mask, count=int(np.count_nonzero(mask)))
         try:
-            comp = home_component(cand, self.signs, HOME).result
+            comp = home_component(cand, self.signs, HOME, self.sides).result
         except HomeNotReachable:  # home itself outside these strokes
             return None
         ext_x, gam = slice_extents(comp, "x", "gamma")

@@ -37,11 +37,17 @@ class HomeComponent:
     polynomials: tuple[str, ...]
     vanishing_at_home: tuple[str, ...]
     reachable_elsewhere: int  # reachable samples outside the component
-    bounding: dict[str, int]  # polynomial -> component samples near its sign change
+    sides: SignSides  # the signs around home (for ``bounding``)
 
     @property
     def count(self) -> int:
         return self.result.count
+
+    @property
+    def bounding(self) -> dict[str, int]:
+        """Polynomial -> component samples near its sign change (:meth:`SignSides.bounding`),
+        counted when asked for."""
+        return self.sides.bounding(self.result.mask)
 
 
 def nearest_index(res: ScanResult, home: Mapping[str, float]) -> tuple[int, ...]:
@@ -78,49 +84,68 @@ def signs_near_reachable(res: ScanResult) -> dict[str, np.ndarray]:
     return polynomial_signs(res, where=shell(res.mask))
 
 
-def _bounding(mask: np.ndarray, signs: Mapping[str, np.ndarray], at: tuple[int, ...],
-              names: tuple[str, ...]) -> dict[str, int]:
-    """Per polynomial: the component samples within two grid steps (along one axis) of a
-    sample where it has the sign opposite to home's: its locus passes within two steps of
-    the component.  Two, because the sample on the locus itself is usually excluded (the IK
-    is singular there) and its computed sign is rounding noise; samples where a polynomial
-    is undefined (0) are not taken as evidence."""
-    out = {}
-    for name in names:
-        s = signs[name]
-        other = s == -s[at]
-        near = np.zeros_like(mask)
-        for axis in range(mask.ndim):
-            for k in (1, 2):
-                lo = [slice(None)] * mask.ndim
-                hi = [slice(None)] * mask.ndim
-                lo[axis], hi[axis] = slice(None, -k), slice(k, None)
-                near[tuple(lo)] |= other[tuple(hi)]
-                near[tuple(hi)] |= other[tuple(lo)]
-        out[name] = int(np.count_nonzero(mask & near))
-    return out
+class SignSides:
+    """What :func:`home_component` reads of the singularity polynomials' signs around the
+    home sample ``at``, for any mask of the same grid: the polynomials used (not zero at
+    home) and skipped, where all used ones have home's sign, and per polynomial the samples
+    within two grid steps of its opposite sign (built when first asked for).  A search that
+    labels many masks of one scan builds it once (:mod:`..studies.planar_stroke_000`)."""
+
+    def __init__(self, signs: Mapping[str, np.ndarray], at: tuple[int, ...]):
+        self.signs, self.at = signs, at
+        self.used = tuple(n for n in sorted(signs) if signs[n][at] != 0)
+        self.skipped = tuple(n for n in sorted(signs) if signs[n][at] == 0)
+        self.agree = None
+        for name in self.used:
+            same = signs[name] == signs[name][at]
+            self.agree = same if self.agree is None else self.agree & same
+        self._near: dict[str, np.ndarray] = {}
+
+    def near(self, name: str) -> np.ndarray:
+        """The samples within two grid steps (along one axis) of a sample where ``name``
+        has the sign opposite to home's."""
+        if name not in self._near:
+            s = self.signs[name]
+            other = s == -s[self.at]
+            near = np.zeros(other.shape, dtype=bool)
+            for axis in range(other.ndim):
+                for k in (1, 2):
+                    lo = [slice(None)] * other.ndim
+                    hi = [slice(None)] * other.ndim
+                    lo[axis], hi[axis] = slice(None, -k), slice(k, None)
+                    near[tuple(lo)] |= other[tuple(hi)]
+                    near[tuple(hi)] |= other[tuple(lo)]
+            self._near[name] = near
+        return self._near[name]
+
+    def bounding(self, mask: np.ndarray) -> dict[str, int]:
+        """Per used polynomial: the samples of ``mask`` within two grid steps (along one
+        axis) of a sample where it has the sign opposite to home's: its locus passes within
+        two steps of the component.  Two, because the sample on the locus itself is usually
+        excluded (the IK is singular there) and its computed sign is rounding noise; samples
+        where a polynomial is undefined (0) are not taken as evidence."""
+        return {name: int(np.count_nonzero(mask & self.near(name))) for name in self.used}
 
 
 def home_component(res: ScanResult, signs: Mapping[str, np.ndarray],
-                   home: Mapping[str, float]) -> HomeComponent:
+                   home: Mapping[str, float], sides: SignSides | None = None
+                   ) -> HomeComponent:
     """Restrict ``res`` (a scan that kept its mask) to the samples connected to ``home``
     without a sign change of any polynomial of ``signs`` (:func:`signs_near_reachable`,
-    or :func:`.singular_loci.polynomial_signs`, on at least the reachable samples)."""
+    or :func:`.singular_loci.polynomial_signs`, on at least the reachable samples).
+    ``sides``: ``SignSides(signs, home's sample)`` where already built."""
     if res.mask is None:
         raise ValueError(f"{res.mechanism}: the scan kept no mask (keep_mask=False)")
     at = nearest_index(res, home)
     if not res.mask[at]:
         raise HomeNotReachable(f"{res.mechanism}: the home pose {dict(home)} is not reachable "
                          "on this grid")
-    allowed = res.mask.copy()
-    used, skipped = [], []
-    for name in sorted(signs):
-        s = signs[name]
-        if s[at] == 0:
-            skipped.append(name)
-            continue
-        used.append(name)
-        allowed &= s == s[at]
+    if sides is None:
+        sides = SignSides(signs, at)
+    elif sides.signs is not signs or sides.at != at:
+        raise ValueError(f"{res.mechanism}: sides were built for other signs or another "
+                         f"home sample ({sides.at}, not {at})")
+    allowed = res.mask if sides.agree is None else res.mask & sides.agree
     labels, _ = ndimage.label(allowed, structure=_faces(allowed.ndim))
     mask = labels == labels[at]
     ranges = {}
@@ -130,5 +155,4 @@ def home_component(res: ScanResult, signs: Mapping[str, np.ndarray],
         ranges[a.name] = (float(a.values()[hit[0]]), float(a.values()[hit[-1]]))
     count = int(np.count_nonzero(mask))
     return HomeComponent(replace(res, mask=mask, count=count, ranges=ranges), at,
-                         tuple(used), tuple(skipped), int(res.count - count),
-                         _bounding(mask, signs, at, tuple(used)))
+                         sides.used, sides.skipped, int(res.count - count), sides)
