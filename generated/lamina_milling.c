@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c32aa86196edecf70cbc080c66d1033b0e3402fba3ed786d9533359ee9c1caa8
+ * Derivation hash: f5716d50383f8542745e2a7017522914c1826ecc4c6ec4f3f69577c75942d3cc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c32aa86196edecf70cbc080c66d1033b0e3402fba3ed786d9533359ee9c1caa8";
+const char bonered_derivation_hash[] = "f5716d50383f8542745e2a7017522914c1826ecc4c6ec4f3f69577c75942d3cc";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1c80a4256c10318210e2a5e3a52b7b7db7183a4ee0322561e54b81000d91383d
+ * Derivation hash: 824c4984e93bb8d7e035806730fa740b0c3e68aab126d8f3403d40bb04207ba2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1c80a4256c10318210e2a5e3a52b7b7db7183a4ee0322561e54b81000d91383d";
+const char bonered_derivation_hash[] = "824c4984e93bb8d7e035806730fa740b0c3e68aab126d8f3403d40bb04207ba2";
 int bonered_abi(void) { return 3; }
 #endif
 

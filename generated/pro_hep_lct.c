@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8947f7adea65c68f06b9506e3a93a233abefe634fea6b45e8622b5fd46c8fe0f
+ * Derivation hash: b1e95e19ff774696cd28ec7883e9836b9ca176528f61ffc08bc68847ba822bf1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8947f7adea65c68f06b9506e3a93a233abefe634fea6b45e8622b5fd46c8fe0f";
+const char bonered_derivation_hash[] = "b1e95e19ff774696cd28ec7883e9836b9ca176528f61ffc08bc68847ba822bf1";
 int bonered_abi(void) { return 3; }
 #endif
 

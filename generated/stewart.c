@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c6e99a613d14fc9621220882538fa249b71f1a4becfeaa97debea67973ff6256
+ * Derivation hash: ea4fb17cc985f8727b4a41b5e6208682fd9ca8f07cac695e5c80320beda7574a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c6e99a613d14fc9621220882538fa249b71f1a4becfeaa97debea67973ff6256";
+const char bonered_derivation_hash[] = "ea4fb17cc985f8727b4a41b5e6208682fd9ca8f07cac695e5c80320beda7574a";
 int bonered_abi(void) { return 3; }
 #endif
 

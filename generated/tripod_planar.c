@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a9ef5dc4fcee19ef7490bf3e2b339a4e633b65de4f9ec369248e5aa6d956e831
+ * Derivation hash: 93a83376094ef7d72260eb9f79f0d4fbba62dd7fecb100c650f25138245426db
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a9ef5dc4fcee19ef7490bf3e2b339a4e633b65de4f9ec369248e5aa6d956e831";
+const char bonered_derivation_hash[] = "93a83376094ef7d72260eb9f79f0d4fbba62dd7fecb100c650f25138245426db";
 int bonered_abi(void) { return 3; }
 #endif
 

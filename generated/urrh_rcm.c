@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f37e102e80356469e730017bb43e72dda52b2dc51d9d1723320b7a1290f6c153
+ * Derivation hash: 677b4de5e6c58d06d73ab413de791e54342905b6dc8a6c45aefaea418fec850f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f37e102e80356469e730017bb43e72dda52b2dc51d9d1723320b7a1290f6c153";
+const char bonered_derivation_hash[] = "677b4de5e6c58d06d73ab413de791e54342905b6dc8a6c45aefaea418fec850f";
 int bonered_abi(void) { return 3; }
 #endif
 
