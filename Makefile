@@ -7,11 +7,16 @@ STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml constraints.txt | sha256
 .PHONY: install system-deps derive derive-force test bench report lint lock clean
 
 # the pinned packages (constraints.txt) installed with uv, ten times faster than pip (about 5 s
-# against 55 s from a warm cache); with pip where uv cannot run
+# against 55 s from a warm cache); with pip where uv cannot run.  --compile-bytecode: uv writes
+# no .pyc by default (pip does), and where PYTHONDONTWRITEBYTECODE is set nothing caches them
+# later, so every process (derive's and the scans' workers, the test workers) compiled
+# sympy, scipy and matplotlib from source again: about 1.9 s per process on this project's
+# machine, for about 6 s once at install
 $(STAMP): pyproject.toml constraints.txt
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	( $(PY) -m pip install -q -c constraints.txt uv \
-	  && $(VENV)/bin/uv pip install -q --python $(PY) -c constraints.txt -e '.[dev]' ) \
+	  && $(VENV)/bin/uv pip install -q --compile-bytecode --python $(PY) -c constraints.txt \
+	       -e '.[dev]' ) \
 	  || $(PY) -m pip install -q -c constraints.txt -e '.[dev]'
 	rm -f $(VENV)/.installed-* && touch $(STAMP)
 
