@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f5716d50383f8542745e2a7017522914c1826ecc4c6ec4f3f69577c75942d3cc
+ * Derivation hash: 214aded02eb546c35add6ec9c70f8bdf16732af513fe2e6aa612bd78b8267ced
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f5716d50383f8542745e2a7017522914c1826ecc4c6ec4f3f69577c75942d3cc";
+const char bonered_derivation_hash[] = "214aded02eb546c35add6ec9c70f8bdf16732af513fe2e6aa612bd78b8267ced";
 int bonered_abi(void) { return 3; }
 #endif
 

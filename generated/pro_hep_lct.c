@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b1e95e19ff774696cd28ec7883e9836b9ca176528f61ffc08bc68847ba822bf1
+ * Derivation hash: 46246af16474f134ca39205eab4c63f8d586ca711c3bcb781b7179a95d3064ce
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b1e95e19ff774696cd28ec7883e9836b9ca176528f61ffc08bc68847ba822bf1";
+const char bonered_derivation_hash[] = "46246af16474f134ca39205eab4c63f8d586ca711c3bcb781b7179a95d3064ce";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ea4fb17cc985f8727b4a41b5e6208682fd9ca8f07cac695e5c80320beda7574a
+ * Derivation hash: 6f5a0d705848c05fdd1af53362505613938d0de67932410219085f9d12c9d9bd
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ea4fb17cc985f8727b4a41b5e6208682fd9ca8f07cac695e5c80320beda7574a";
+const char bonered_derivation_hash[] = "6f5a0d705848c05fdd1af53362505613938d0de67932410219085f9d12c9d9bd";
 int bonered_abi(void) { return 3; }
 #endif
 

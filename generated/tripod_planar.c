@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 93a83376094ef7d72260eb9f79f0d4fbba62dd7fecb100c650f25138245426db
+ * Derivation hash: 5414c6ab1b86c82f5e433741a2b3a718826c6ced205f5b809522a6123fcd5e73
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "93a83376094ef7d72260eb9f79f0d4fbba62dd7fecb100c650f25138245426db";
+const char bonered_derivation_hash[] = "5414c6ab1b86c82f5e433741a2b3a718826c6ced205f5b809522a6123fcd5e73";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 677b4de5e6c58d06d73ab413de791e54342905b6dc8a6c45aefaea418fec850f
+ * Derivation hash: b237aba41403ce9d60ff4e9d7d1817b442cf9969657c630f99e8f82842357f57
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "677b4de5e6c58d06d73ab413de791e54342905b6dc8a6c45aefaea418fec850f";
+const char bonered_derivation_hash[] = "b237aba41403ce9d60ff4e9d7d1817b442cf9969657c630f99e8f82842357f57";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -198,3 +198,23 @@ def test_parasitic_numerator_is_the_together_numerator_up_to_a_constant():
     g = x * y + 3 * y
     assert _numerator(g, sub) == sp.expand(sp.fraction(sp.together(g.subs(sub)))[0])
     assert _numerator(x - 1, {x: 1 / (a + 1)}) == sp.expand(-a)  # not a polynomial: together
+
+
+@pytest.mark.parametrize("seed", range(60))
+def test_text_is_str(seed):
+    """polyring.text prints what str prints (the algebra records are written with it),
+    for random sums of monomials, the two-term case sympy orders number first (1 - 2*x),
+    symbols whose names sort otherwise than their indices (z10 before z9), and for
+    what it leaves to sympy (non-polynomial terms, two symbols of one name)."""
+    rng = random.Random(seed)
+    terms = _random_terms(rng, rng.choice((1, 2, 2, 3, 6, 40)), len(S))
+    if seed % 4 == 0:
+        terms[(0,) * len(S)] = Fraction(rng.choice((-5, -1, 1, 3)), rng.choice((1, 2)))
+    e = _plain(terms, S)
+    assert pr.text(e) == str(e)
+    x = S[3]
+    special = [1 - 2 * x**3, sp.Rational(1, 2) - x, 1 - 2 * x * S[0], -1 + x, 2 + x,
+               sp.Integer(0), sp.Rational(-7, 3), -x, x / 7 - S[6] * S[5],
+               sp.sqrt(2) * x + 1, x**-1 + x, sp.Symbol("a") + S[0], 0.5 * x + 1]
+    for e in special:
+        assert pr.text(e) == str(e), e

@@ -379,3 +379,60 @@ def expanded(expr: sp.Expr) -> sp.Expr:
 def _is_monomial(term: sp.Expr) -> bool:
     coeff, factors = term.as_coeff_mul()
     return coeff.is_Rational and all(_symbol_power(f) is not None for f in factors)
+
+
+def text(expr: sp.Expr) -> str:
+    """``str(expr)``, the same characters, for a sum of monomials with rational
+    coefficients in distinct plain symbols; other expressions through sympy's printer.
+
+    sympy's ``StrPrinter`` orders an Add's terms by ``as_ordered_terms`` (lex, descending,
+    in the symbols sorted by name, which is their ``default_sort_key``), a term's factors by
+    their sort key (the coefficient, then the symbols by name) and prints ``c x**k*y/q``
+    with the sign and the rational coefficient split; for a polynomial of thousands of
+    terms it takes seconds, most of them in the general machinery (``complex`` of every
+    coefficient, the printer's dispatch).  Here the monomials are read off once and
+    printed by those rules (checked against ``str`` in tests/test_typed_polynomials.py)."""
+    parsed = []
+    symbols: dict[str, sp.Symbol] = {}
+    for term in sp.Add.make_args(expr):
+        coeff, rest = term.as_coeff_Mul()
+        if not coeff.is_Rational:
+            return str(expr)
+        powers = {}
+        for f in sp.Mul.make_args(rest):
+            if f is sp.S.One:
+                continue
+            power = _symbol_power(f)
+            if power is None or type(power[0]) is not sp.Symbol:
+                return str(expr)
+            name = power[0].name
+            if symbols.setdefault(name, power[0]) != power[0] or name in powers:
+                return str(expr)  # two symbols of one name, or a repeated base
+            powers[name] = int(power[1])
+        parsed.append((coeff, powers))
+    names = sorted(symbols)
+    numbers = [t for t in parsed if not t[1]]
+    if (len(parsed) == 2 and len(numbers) == 1 and numbers[0][0] > 0
+            and [len(t[1]) for t in parsed if t[1]] == [1]
+            and next(t for t in parsed if t[1])[0] < 0):
+        # as_ordered_terms' special case: a positive number and -c*x**k, the number first
+        parsed = [numbers[0], next(t for t in parsed if t[1])]
+    elif len(parsed) > 1:
+        keyed = [(tuple(p.get(n, 0) for n in names), c, p) for c, p in parsed]
+        if len({k for k, _, _ in keyed}) != len(keyed):
+            return str(expr)  # a repeated monomial: not a canonical sum
+        keyed.sort(key=lambda t: t[0], reverse=True)
+        parsed = [(c, p) for _, c, p in keyed]
+    out = []
+    for coeff, powers in parsed:
+        p, q = int(coeff.p), int(coeff.q)
+        sign = "-" if p < 0 else ""
+        num = [str(abs(p))] if abs(p) != 1 else []
+        num += [n if k == 1 else f"{n}**{k}" for n, k in sorted(powers.items())]
+        t = "*".join(num) or "1"
+        if q != 1:
+            t += f"/{q}"
+        out.append((sign, t))
+    first_sign, first = out[0]
+    return first_sign + first + "".join(
+        f" {'-' if s else '+'} {t}" for s, t in out[1:])

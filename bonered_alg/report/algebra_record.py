@@ -13,6 +13,8 @@ import json
 
 import sympy as sp
 
+from ..algebra import polyring as pr
+
 # a polynomial with more terms than this is summarized in the report (about six lines)
 FULL_TERMS = 24
 
@@ -34,9 +36,10 @@ def degrees(expr) -> list[tuple[sp.Symbol, int]]:
 
 
 def _text(expr, expanded: bool = False) -> str:
-    """``expr`` expanded, as text; ``expanded``: it is a sum of monomials already (a leg's
-    generators, built so from the engine's terms), printed as it is."""
-    return str(expr if expanded else sp.expand(expr))
+    """``expr`` expanded, as text (``str``'s characters, :func:`..algebra.polyring.text`);
+    ``expanded``: it is a sum of monomials already (a leg's generators, built so from the
+    engine's terms), printed as it is."""
+    return pr.text(expr if expanded else sp.expand(expr))
 
 
 def algebra_json(d) -> str:
