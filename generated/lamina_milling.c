@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 214aded02eb546c35add6ec9c70f8bdf16732af513fe2e6aa612bd78b8267ced
+ * Derivation hash: e977572b4694aa07ab80c09d8eafc07105b8fea81551d60fa776de8bc47bd753
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "214aded02eb546c35add6ec9c70f8bdf16732af513fe2e6aa612bd78b8267ced";
+const char bonered_derivation_hash[] = "e977572b4694aa07ab80c09d8eafc07105b8fea81551d60fa776de8bc47bd753";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ad6e88aac1ee0c6fdc4ad3e5aebd2fd7b646090c50f8aa6a9e6a0f698b2680e8
+ * Derivation hash: 5801f10bd001082cdd75627cbdbfde7d9cf263329e0f879b22bfac2bb6a48c59
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ad6e88aac1ee0c6fdc4ad3e5aebd2fd7b646090c50f8aa6a9e6a0f698b2680e8";
+const char bonered_derivation_hash[] = "5801f10bd001082cdd75627cbdbfde7d9cf263329e0f879b22bfac2bb6a48c59";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 46246af16474f134ca39205eab4c63f8d586ca711c3bcb781b7179a95d3064ce
+ * Derivation hash: 2ca35f06da353163688892d6c82f39f494529e89a053cca93ac663c9a68fab3d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "46246af16474f134ca39205eab4c63f8d586ca711c3bcb781b7179a95d3064ce";
+const char bonered_derivation_hash[] = "2ca35f06da353163688892d6c82f39f494529e89a053cca93ac663c9a68fab3d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5414c6ab1b86c82f5e433741a2b3a718826c6ced205f5b809522a6123fcd5e73
+ * Derivation hash: 534a9944e9a8a0e92f6b18e0d214acd16f0b3074e3e31048cc364058186fd769
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5414c6ab1b86c82f5e433741a2b3a718826c6ced205f5b809522a6123fcd5e73";
+const char bonered_derivation_hash[] = "534a9944e9a8a0e92f6b18e0d214acd16f0b3074e3e31048cc364058186fd769";
 int bonered_abi(void) { return 3; }
 #endif
 

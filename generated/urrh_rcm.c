@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b237aba41403ce9d60ff4e9d7d1817b442cf9969657c630f99e8f82842357f57
+ * Derivation hash: f243c43af00b53156833a760816ad7487e7c5f2ee8115f6375e77d5429a7f999
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b237aba41403ce9d60ff4e9d7d1817b442cf9969657c630f99e8f82842357f57";
+const char bonered_derivation_hash[] = "f243c43af00b53156833a760816ad7487e7c5f2ee8115f6375e77d5429a7f999";
 int bonered_abi(void) { return 3; }
 #endif
 

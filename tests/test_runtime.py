@@ -142,6 +142,11 @@ def test_plain_scalar_parameters_are_checked_as_arrays_are():
     assert arrays.vector is None and arrays[0].tolist() == [1.0, 2.0]
     assert inputs.parameters(m, "f", {"k": 7}).vector.tolist() == [7.0, 2.0, 0.0]
     assert inputs.parameters(m, "f", {"n": 4})[2] == 4.0  # keywords are never the cache
+    m.parameters["r"] = 5.0  # a module's PARAMETERS given a new default: checked again
+    assert inputs.parameters(m, "f", {}).vector.tolist() == [1.0, 5.0, 0.0]
+    m.parameters["r"] = -5.0
+    with pytest.raises(ValueError, match="'r' must be > 0"):
+        inputs.parameters(m, "f", {})
     with pytest.raises(ValueError, match="'k' has no value"):  # no default: never cached
         inputs.parameters(toy_model(parameters={"k": None}), "f", {})
 

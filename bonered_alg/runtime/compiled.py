@@ -180,7 +180,8 @@ def _rows(a: numpy.ndarray) -> tuple[int, int]:
     """``(address of row 0, bytes per row)`` of a C-contiguous array: row ``lo`` starts at
     ``address + lo * bytes`` (what ``a[lo:].ctypes.data`` gives, without building a ctypes
     view per call)."""
-    assert a.flags.c_contiguous
+    if not a.flags.c_contiguous:
+        raise ValueError("the compiled fast path takes C-contiguous arrays")
     return a.ctypes.data, a.itemsize * (math.prod(a.shape[1:]))
 
 

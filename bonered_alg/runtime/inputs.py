@@ -30,8 +30,9 @@ DOMAIN_TEST = {"positive": (lambda v: v > 0, "> 0"),
 # scalars checked with float comparisons (bool, a subclass of int, fails the exact type
 # test and goes through _numeric, which rejects it)
 _PLAIN_SCALARS = (float, int, numpy.float64)
-# id(model) -> (model, its checked default parameters): checked once per model (the model
-# kept, so that its id is not reused while the entry lives)
+# id(model) -> (model, its checked default parameters, the default values they were checked
+# from): checked once per model and defaults (the model kept, so that its id is not reused
+# while the entry lives)
 _DEFAULTS: dict[int, tuple] = {}
 
 
@@ -66,7 +67,8 @@ def parameters(model, func: str, params: dict) -> Parameters:
     once per model."""
     if not params:
         known = _DEFAULTS.get(id(model))
-        if known is not None and known[0] is model:
+        if (known is not None and known[0] is model and len(known[2]) == len(model.parameters)
+                and all(a is b for a, b in zip(known[2], model.parameters.values()))):
             return Parameters(known[1], known[1].vector)
     else:
         unknown = sorted(set(params) - set(model.parameters))
@@ -105,8 +107,9 @@ def parameters(model, func: str, params: dict) -> Parameters:
                                  f" {model.parameter_units[name]}")
         out.append(value)
     out = Parameters.of(out)
-    if not params:  # the defaults passed: the same values on every later call
-        _DEFAULTS[id(model)] = (model, out)
+    if not params:  # the defaults passed: the same values while the defaults stay the
+        # same objects (a module's PARAMETERS dict assigned a new value is checked again)
+        _DEFAULTS[id(model)] = (model, out, tuple(model.parameters.values()))
     return Parameters(out, out.vector)
 
 
