@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5801f10bd001082cdd75627cbdbfde7d9cf263329e0f879b22bfac2bb6a48c59
+ * Derivation hash: c678e3e0f373325d9133e51450f845ee64b7c1e58a5b792bc847a48e3305038a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5801f10bd001082cdd75627cbdbfde7d9cf263329e0f879b22bfac2bb6a48c59";
+const char bonered_derivation_hash[] = "c678e3e0f373325d9133e51450f845ee64b7c1e58a5b792bc847a48e3305038a";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2ca35f06da353163688892d6c82f39f494529e89a053cca93ac663c9a68fab3d
+ * Derivation hash: 0cb9c430b3227a7e6f4a92803226e272627927ea790e8d018809a329b47cee75
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2ca35f06da353163688892d6c82f39f494529e89a053cca93ac663c9a68fab3d";
+const char bonered_derivation_hash[] = "0cb9c430b3227a7e6f4a92803226e272627927ea790e8d018809a329b47cee75";
 int bonered_abi(void) { return 3; }
 #endif
 

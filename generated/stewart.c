@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1519a051a7c0d2d65f0f0bdc7612b28c9ef1044d2adb35a631ccf0d5f96dd1f7
+ * Derivation hash: 7f2a02081102503c7794dd64ef416032daa945848d7041caebae449e091beab4
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1519a051a7c0d2d65f0f0bdc7612b28c9ef1044d2adb35a631ccf0d5f96dd1f7";
+const char bonered_derivation_hash[] = "7f2a02081102503c7794dd64ef416032daa945848d7041caebae449e091beab4";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 534a9944e9a8a0e92f6b18e0d214acd16f0b3074e3e31048cc364058186fd769
+ * Derivation hash: efcbceda25b98c7526fedf95ea00996e602407235ba5694bbf6199d814381164
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "534a9944e9a8a0e92f6b18e0d214acd16f0b3074e3e31048cc364058186fd769";
+const char bonered_derivation_hash[] = "efcbceda25b98c7526fedf95ea00996e602407235ba5694bbf6199d814381164";
 int bonered_abi(void) { return 3; }
 #endif
 

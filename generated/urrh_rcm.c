@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f243c43af00b53156833a760816ad7487e7c5f2ee8115f6375e77d5429a7f999
+ * Derivation hash: b0ef76efd1bb0b5ae1a58e175cae33bacd35efa4f57f4d8ebe3fdd0047b34a46
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f243c43af00b53156833a760816ad7487e7c5f2ee8115f6375e77d5429a7f999";
+const char bonered_derivation_hash[] = "b0ef76efd1bb0b5ae1a58e175cae33bacd35efa4f57f4d8ebe3fdd0047b34a46";
 int bonered_abi(void) { return 3; }
 #endif
 

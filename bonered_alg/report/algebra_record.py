@@ -20,7 +20,7 @@ FULL_TERMS = 24
 
 
 def terms(expr) -> int:
-    return len(sp.Add.make_args(sp.expand(expr)))
+    return len(sp.Add.make_args(pr.expanded(sp.sympify(expr))))
 
 
 def is_long(expr) -> bool:
@@ -32,14 +32,18 @@ def degrees(expr) -> list[tuple[sp.Symbol, int]]:
     free = sorted(sp.sympify(expr).free_symbols, key=str)
     if not free:
         return []
-    return list(zip(free, sp.Poly(sp.expand(expr), *free).degree_list()))
+    expanded = pr.expanded(sp.sympify(expr))
+    monomials = pr.terms_of(expanded, free)  # read off the terms: Poly takes seconds
+    if monomials is None:
+        return list(zip(free, sp.Poly(expanded, *free).degree_list()))
+    return [(v, max(m[i] for m in monomials)) for i, v in enumerate(free)]
 
 
 def _text(expr, expanded: bool = False) -> str:
     """``expr`` expanded, as text (``str``'s characters, :func:`..algebra.polyring.text`);
     ``expanded``: it is a sum of monomials already (a leg's generators, built so from the
     engine's terms), printed as it is."""
-    return pr.text(expr if expanded else sp.expand(expr))
+    return pr.text(expr if expanded else pr.expanded(sp.sympify(expr)))
 
 
 def algebra_json(d) -> str:

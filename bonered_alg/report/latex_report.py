@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from ..algebra import polyring as pr
 from ..chains.topology import loops, mobility_counts, topology
 from ..kinematics.rps_forward import DEGREE_BOUND, PAIRS
 from ..verification import NOISE_FLOOR
@@ -210,11 +211,11 @@ def _summary(expr) -> str:
 def _generator_table(d, r, generators) -> list[str]:
     """One row per generator (degrees, terms, use), then the short ones in full; every one
     is in full in ``<name>.algebra.json``."""
-    used = {sp.expand(s.generator): s for s in d.steps}
+    used = {pr.expanded(sp.sympify(s.generator)): s for s in d.steps}
     out = [r"\begin{longtable}{lp{0.55\textwidth}rl}\toprule",
            r"generator & degree in each variable & terms & used for\\\midrule"]
     for k, g in enumerate(generators, 1):
-        step = used.get(sp.expand(g))
+        step = used.get(pr.expanded(sp.sympify(g)))
         use = f"IK of ${latex(step.joint)}$" if step is not None else ""
         out.append(f"$g_{{{k}}}$ & {_summary(g)} & {terms(g)} & {use}\\\\")
     out.append(r"\bottomrule\end{longtable}")
@@ -575,7 +576,7 @@ def _classified_factors(d, s):
 def _jacobian(name: str, mat, d) -> list[str]:
     """The matrix itself where it fits the page; else its pattern (entries named by row and
     column, zeros shown) and the entries, in full where they are short."""
-    mat = mat.applyfunc(sp.expand)
+    mat = mat.applyfunc(lambda e: pr.expanded(sp.sympify(e)))
     if all(not is_long(e) for e in mat):
         return [matrix_math(name, mat.applyfunc(sp.factor))]
 
