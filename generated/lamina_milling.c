@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3fc47da3c586fa3b4d2866aa32e35de04add16492a526a4f52c72b2607eb74a4
+ * Derivation hash: 7410dcc439f54e56ffd606bf0c229abaac2012c97f200811c0fd5e38548bf183
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3fc47da3c586fa3b4d2866aa32e35de04add16492a526a4f52c72b2607eb74a4";
+const char bonered_derivation_hash[] = "7410dcc439f54e56ffd606bf0c229abaac2012c97f200811c0fd5e38548bf183";
 int bonered_abi(void) { return 3; }
 #endif
 

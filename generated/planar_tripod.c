@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c678e3e0f373325d9133e51450f845ee64b7c1e58a5b792bc847a48e3305038a
+ * Derivation hash: 19d345bc4b9694bcf1c1e35d5019e07cf21f7927e78a3f0802bd9f8b4f4408c9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c678e3e0f373325d9133e51450f845ee64b7c1e58a5b792bc847a48e3305038a";
+const char bonered_derivation_hash[] = "19d345bc4b9694bcf1c1e35d5019e07cf21f7927e78a3f0802bd9f8b4f4408c9";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0cb9c430b3227a7e6f4a92803226e272627927ea790e8d018809a329b47cee75
+ * Derivation hash: ad4b77e20a95bcfd0cdd2026f70b43c8a68bedc064e2c928b8d43ddf4a2e09d6
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0cb9c430b3227a7e6f4a92803226e272627927ea790e8d018809a329b47cee75";
+const char bonered_derivation_hash[] = "ad4b77e20a95bcfd0cdd2026f70b43c8a68bedc064e2c928b8d43ddf4a2e09d6";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: efcbceda25b98c7526fedf95ea00996e602407235ba5694bbf6199d814381164
+ * Derivation hash: 2494f029e22d058e39c74658580f6a8d500f109ce7bf9f0527ea9fca579d9f19
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "efcbceda25b98c7526fedf95ea00996e602407235ba5694bbf6199d814381164";
+const char bonered_derivation_hash[] = "2494f029e22d058e39c74658580f6a8d500f109ce7bf9f0527ea9fca579d9f19";
 int bonered_abi(void) { return 3; }
 #endif
 

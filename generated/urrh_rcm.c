@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b0ef76efd1bb0b5ae1a58e175cae33bacd35efa4f57f4d8ebe3fdd0047b34a46
+ * Derivation hash: 376edbe582dea74314615d91eb1f77e6deb9d4ed73bc48d246c1486cf0cee410
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b0ef76efd1bb0b5ae1a58e175cae33bacd35efa4f57f4d8ebe3fdd0047b34a46";
+const char bonered_derivation_hash[] = "376edbe582dea74314615d91eb1f77e6deb9d4ed73bc48d246c1486cf0cee410";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -218,3 +218,18 @@ def test_text_is_str(seed):
                sp.sqrt(2) * x + 1, x**-1 + x, sp.Symbol("a") + S[0], 0.5 * x + 1]
     for e in special:
         assert pr.text(e) == str(e), e
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_report_degrees_are_polys(seed):
+    """The reports' degree summaries read off the monomials are Poly's degree_list, also
+    for what is left to Poly (a non-rational coefficient, zero once expanded)."""
+    from bonered_alg.report.algebra_record import degrees
+
+    rng = random.Random(seed)
+    e = _plain(_random_terms(rng, rng.choice((1, 3, 12)), len(S)), S)
+    cases = [e, sp.sqrt(2) * e + S[0], (S[0] + 1) ** 2 - S[0] ** 2 - 2 * S[0] - 1]
+    for c in cases:
+        free = sorted(c.free_symbols, key=str)
+        want = list(zip(free, sp.Poly(sp.expand(c), *free).degree_list())) if free else []
+        assert degrees(c) == want

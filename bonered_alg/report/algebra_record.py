@@ -34,7 +34,7 @@ def degrees(expr) -> list[tuple[sp.Symbol, int]]:
         return []
     expanded = pr.expanded(sp.sympify(expr))
     monomials = pr.terms_of(expanded, free)  # read off the terms: Poly takes seconds
-    if monomials is None:
+    if not monomials:  # not a sum of monomials, or zero once expanded
         return list(zip(free, sp.Poly(expanded, *free).degree_list()))
     return [(v, max(m[i] for m in monomials)) for i, v in enumerate(free)]
 
