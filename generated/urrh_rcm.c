@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 376edbe582dea74314615d91eb1f77e6deb9d4ed73bc48d246c1486cf0cee410
+ * Derivation hash: 607c72e99531b1d37990f86709275d13750cefca4fac6e513d9ae9e20e673c44
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "376edbe582dea74314615d91eb1f77e6deb9d4ed73bc48d246c1486cf0cee410";
+const char bonered_derivation_hash[] = "607c72e99531b1d37990f86709275d13750cefca4fac6e513d9ae9e20e673c44";
 int bonered_abi(void) { return 3; }
 #endif
 

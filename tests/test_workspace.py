@@ -555,6 +555,57 @@ def test_scan_threads_run_every_chunk_once_and_raise_the_first_error(monkeypatch
         scan_module._run_threads([(k, 5) for k in range(37)], 2, None)
 
 
+def test_process_workers_are_kept_between_scans_and_give_the_same_scan(monkeypatch):
+    """scan keeps its spawned workers (the numpy runtime's: the compiled path runs on
+    threads) for the next scan of the process, since starting them costs more than a small
+    scan; a scan on them equals the serial one, twice, on one pool, and a shut-down pool is
+    started again."""
+    from bonered_alg.workspace import scan as scan_module
+
+    monkeypatch.setenv("BONERED_ALG_FAST", "0")
+    scan_module.shutdown_pools()  # workers started under this environment
+    try:
+        g = _small_grid()
+        ref = scan("tripod_planar", g, workers=1, chunk=1 << 16)
+        first = scan("tripod_planar", g, workers=2, chunk=64)
+        pool = scan_module._POOLS[2]
+        again = scan("tripod_planar", g, workers=2, chunk=128)
+        assert scan_module._POOLS[2] is pool
+        for other in (first, again):
+            assert other.count == ref.count and np.array_equal(other.mask, ref.mask)
+            assert other.ranges == ref.ranges and other.reasons == ref.reasons
+        scan_module.shutdown_pools()
+        assert not scan_module._POOLS
+        third = scan("tripod_planar", g, workers=2, chunk=64)
+        assert np.array_equal(third.mask, ref.mask) and scan_module._POOLS[2] is not pool
+    finally:
+        scan_module.shutdown_pools()
+
+
+def test_polynomial_signs_on_threads_equal_one_thread():
+    """polynomial_signs evaluates the grid's chunks on threads: the same signs as on one
+    thread, with and without ``where``."""
+    from bonered_alg.workspace import singular_loci
+
+    g = Grid(POSE, (Axis.from_user("gamma", -80, 80, 0.5), Axis.from_user("x", -60, 60, 2)),
+             {"y": 0.0, "z": 210.0, "alpha": 0.05, "beta": -0.03})
+    res = scan("tripod_planar", g, workers=1)
+    where = np.zeros(g.shape, dtype=bool)
+    where[::3] = True
+    old = singular_loci.CHUNK
+    singular_loci.CHUNK = 1000  # several chunks per thread
+    try:
+        for w in (None, where):
+            one = singular_loci.polynomial_signs(res, where=w, workers=1)
+            two = singular_loci.polynomial_signs(res, where=w, workers=2)
+            assert one.keys() == two.keys()
+            assert all(np.array_equal(one[k], two[k]) for k in one)
+            assert any(np.any(v > 0) for v in one.values())
+            assert any(np.any(v < 0) for v in one.values())
+    finally:
+        singular_loci.CHUNK = old
+
+
 def _grid_around_home(module, n=(13, 11, 9)):
     """A grid over three pose coordinates through the module's home pose (the others fixed
     there), wide enough to hold reached and unreached samples."""

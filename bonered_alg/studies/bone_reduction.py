@@ -395,7 +395,7 @@ def singularities_001(workers: int | None = None) -> tuple[list[dict], dict]:
     for mech, (name, (axes, fixed)) in ((m, g) for m in ("tripod_planar", "stewart")
                                         for g in SING_GRIDS_001.items()):
         res = scan(mech, user_grid(module.POSE, axes, fixed), workers=workers)
-        signs = polynomial_signs(res)
+        signs = polynomial_signs(res, workers=workers)
         home = home_component(res, signs, {a.name: home_pose[a.name] for a in res.grid.axes})
         rows.append({"mechanism": mech, "grid": name, "description": res.grid.describe(),
                      "samples": res.samples,
@@ -408,7 +408,7 @@ def singularities_001(workers: int | None = None) -> tuple[list[dict], dict]:
     slices = {}
     for name, (axes, fixed) in SING_SLICES_001.items():
         res = scan("tripod_planar", user_grid(module.POSE, axes, fixed), workers=workers)
-        slices[name] = (res, polynomial_signs(res))
+        slices[name] = (res, polynomial_signs(res, workers=workers))
     return rows, slices
 
 

@@ -17,6 +17,8 @@ each candidate range is then a mask, a connected-component labelling and the ext
 from __future__ import annotations
 
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -114,6 +116,7 @@ def recover(workers: int | None = None) -> StrokeFit:
     steps = {a.name: a.step for a in s.res.grid.axes}
     tol = {"x": steps["x"], "y": steps["y"], "gamma": math.degrees(steps["gamma"])}
     seen: dict[tuple[float, float], tuple[dict[str, float], float] | None] = {}
+    threads = workers or os.cpu_count() or 1
 
     def evaluate(lo, hi):
         key = (float(lo), float(hi))
@@ -122,6 +125,13 @@ def recover(workers: int | None = None) -> StrokeFit:
         return seen[key]
 
     def best_of(points):
+        # the candidates not yet seen, on ``threads`` threads (the labelling and the masks
+        # release the GIL: two threads take about half the time); the same ranges as one
+        # by one, and the choice below reads them in the order of ``points``
+        todo = list(dict.fromkeys((float(lo), float(hi)) for lo, hi in points
+                                  if (float(lo), float(hi)) not in seen))
+        with ThreadPoolExecutor(max_workers=max(1, min(threads, len(todo)))) as pool:
+            seen.update(zip(todo, pool.map(lambda key: s.ranges(*key), todo)))
         scored = [(_error(r[0]), p) for p in points if (r := evaluate(*p)) is not None]
         return min(scored)[1]
 

@@ -3,7 +3,8 @@
 :func:`scan` classifies every sample of a :class:`~.grid.Grid` with
 :func:`~.membership.classify`, one chunk at a time, and keeps only running totals (count,
 per-axis extremes, reasons) and, optionally, a bit-packed mask (one bit per sample: 10^8
-samples are 12.5 MB).  Chunks run on a local process pool (all cores by default) or, for
+samples are 12.5 MB).  Chunks run on a local process pool (all cores by default, its
+workers kept for the next scan of the process; :func:`shutdown_pools` stops them) or, for
 scans that outgrow one machine, on a dask cluster (``client=`` a ``distributed.Client``,
 or ``"local"`` for a ``LocalCluster``); at most ``2 x workers`` chunks are in flight, so
 memory stays bounded at any resolution.
@@ -159,7 +160,36 @@ def compiled_path(module, params: Mapping) -> bool:
     return model._fast_path("scan", None, par) is not None  # noqa: SLF001
 
 
+# the spawned worker processes, kept for the next scan of this process: starting two costs
+# about 0.3 s (the interpreter, numpy, the runtime and the generated module), more than a
+# scan of half a million samples takes on one core; the comparison study scans 19 grids
+_POOLS: dict[int, ProcessPoolExecutor] = {}
+_POOLS_LOCK = threading.Lock()
+
+
+def _process_pool(workers: int) -> ProcessPoolExecutor:
+    """A pool of ``workers`` spawned processes, started on first use and kept (a broken one,
+    e.g. after a worker was killed, is replaced)."""
+    with _POOLS_LOCK:
+        pool = _POOLS.get(workers)
+        if pool is None or getattr(pool, "_broken", False):
+            if pool is not None:
+                pool.shutdown(wait=False, cancel_futures=True)
+            pool = ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"))
+            _POOLS[workers] = pool
+        return pool
+
+
+def shutdown_pools() -> None:
+    """Stop the kept worker processes (they also stop when this process exits)."""
+    with _POOLS_LOCK:
+        for pool in _POOLS.values():
+            pool.shutdown(wait=True, cancel_futures=True)
+        _POOLS.clear()
+
+
 def _run_local(tasks, workers, progress, threads=False):
+    workers = max(1, min(workers, len(tasks)))  # one task: in this process
     if workers == 1:
         out = []
         for i, t in enumerate(tasks):
@@ -170,10 +200,9 @@ def _run_local(tasks, workers, progress, threads=False):
     if threads:
         return _run_threads(tasks, workers, progress)
     out, pending = [], set()
-    it = iter(tasks)
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"))
-    with pool:
-        for t in it:
+    pool = _process_pool(workers)
+    try:
+        for t in tasks:
             pending.add(pool.submit(scan_chunk, *t))
             if len(pending) >= 2 * workers:
                 done, pending = wait(pending, return_when=FIRST_COMPLETED)
@@ -184,6 +213,10 @@ def _run_local(tasks, workers, progress, threads=False):
             out.append(f.result())
             if progress:
                 progress(len(out), len(tasks))
+    finally:  # an error (or an interrupt) leaves no chunk of this scan running
+        for f in pending:
+            f.cancel()
+        wait(pending)
     return out
 
 
