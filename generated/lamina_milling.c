@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7410dcc439f54e56ffd606bf0c229abaac2012c97f200811c0fd5e38548bf183
+ * Derivation hash: 81793af44b7f0b1a80b588acafa23f9767f4782feb1c8abfa45bc9376bb2e196
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7410dcc439f54e56ffd606bf0c229abaac2012c97f200811c0fd5e38548bf183";
+const char bonered_derivation_hash[] = "81793af44b7f0b1a80b588acafa23f9767f4782feb1c8abfa45bc9376bb2e196";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 19d345bc4b9694bcf1c1e35d5019e07cf21f7927e78a3f0802bd9f8b4f4408c9
+ * Derivation hash: 4c923afbf227e026d6a260965ff372834081b635ab556f41384c75024068e603
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "19d345bc4b9694bcf1c1e35d5019e07cf21f7927e78a3f0802bd9f8b4f4408c9";
+const char bonered_derivation_hash[] = "4c923afbf227e026d6a260965ff372834081b635ab556f41384c75024068e603";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ad4b77e20a95bcfd0cdd2026f70b43c8a68bedc064e2c928b8d43ddf4a2e09d6
+ * Derivation hash: 05049fc9a7b41a1ded169f1da34cf4012ecc8c8b15e0660062cffc2cbe1fb4f7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ad4b77e20a95bcfd0cdd2026f70b43c8a68bedc064e2c928b8d43ddf4a2e09d6";
+const char bonered_derivation_hash[] = "05049fc9a7b41a1ded169f1da34cf4012ecc8c8b15e0660062cffc2cbe1fb4f7";
 int bonered_abi(void) { return 3; }
 #endif
 

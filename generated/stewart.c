@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 096a2230d46094feec2ca05fbcba3608aaccd981c3f0a925507156c541b34962
+ * Derivation hash: 1bf4abe6ea47ff6205033ec7c3cccad90c023055dee87fcce7cdca62d0f05e03
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "096a2230d46094feec2ca05fbcba3608aaccd981c3f0a925507156c541b34962";
+const char bonered_derivation_hash[] = "1bf4abe6ea47ff6205033ec7c3cccad90c023055dee87fcce7cdca62d0f05e03";
 int bonered_abi(void) { return 3; }
 #endif
 

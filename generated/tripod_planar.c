@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2494f029e22d058e39c74658580f6a8d500f109ce7bf9f0527ea9fca579d9f19
+ * Derivation hash: 1729f991dbd75a575b1320edfaf9d976a59f944c5d69081cb60b749f6538b212
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2494f029e22d058e39c74658580f6a8d500f109ce7bf9f0527ea9fca579d9f19";
+const char bonered_derivation_hash[] = "1729f991dbd75a575b1320edfaf9d976a59f944c5d69081cb60b749f6538b212";
 int bonered_abi(void) { return 3; }
 #endif
 

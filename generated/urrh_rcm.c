@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 607c72e99531b1d37990f86709275d13750cefca4fac6e513d9ae9e20e673c44
+ * Derivation hash: 19c8fe035fe47a8986cd94c49ddb329a2ef4aa8d57b01a3342b7a733a0ee7cda
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "607c72e99531b1d37990f86709275d13750cefca4fac6e513d9ae9e20e673c44";
+const char bonered_derivation_hash[] = "19c8fe035fe47a8986cd94c49ddb329a2ef4aa8d57b01a3342b7a733a0ee7cda";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -2,6 +2,7 @@
 fast path gives exactly what the plain sympy computation it replaces gives, which is what
 keeps the derivations' outputs byte-identical."""
 
+import math
 import random
 from fractions import Fraction
 
@@ -233,3 +234,36 @@ def test_report_degrees_are_polys(seed):
         free = sorted(c.free_symbols, key=str)
         want = list(zip(free, sp.Poly(sp.expand(c), *free).degree_list())) if free else []
         assert degrees(c) == want
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_normal_parametric_basis_is_the_sympy_form(seed):
+    """The lex bases' normal form (primitive over Z[parameters], signed, sorted) by FLINT's
+    gcd and exact division equals the one by sympy's together/gcd_list/cancel: generators
+    with a content in the parameters (a product with a random polynomial in them), an
+    integer content, rational coefficients, a zero and a repeated generator."""
+    from bonered_alg.elimination.problem import (
+        normal_parametric_basis,
+        normal_parametric_basis_sympy,
+    )
+
+    rng = random.Random(1000 + seed)
+    unknowns, parameters = S[3:], S[:3]
+    gens = unknowns + parameters
+    basis = []
+    for _ in range(rng.randint(1, 4)):
+        p = sp.expand(_plain(_random_terms(rng, rng.choice((1, 3, 8)), len(gens)), gens))
+        if p == 0:
+            continue
+        content = _plain(_random_terms(rng, rng.choice((1, 2)), 3), parameters)
+        scaled = sp.expand(p * content * sp.Rational(rng.choice((1, -6, 4)),
+                                                     rng.choice((1, 3))))
+        if scaled == 0:
+            continue
+        poly = sp.Poly(scaled, *gens)
+        basis.append(tuple((e, Fraction(int(c.p), int(c.q))) for e, c in poly.terms()))
+    basis += [(), basis[0]] if basis else [()]
+    got = normal_parametric_basis(basis, unknowns, parameters)
+    assert got == normal_parametric_basis_sympy(basis, unknowns, parameters)
+    for terms in got:  # primitive: no integer content left
+        assert terms and math.gcd(*(int(c) for _, c in terms)) == 1

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import hashlib
+import math
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 import sympy as sp
 
@@ -82,7 +84,66 @@ def _expressions(result, gens) -> tuple[sp.Expr, ...]:
 
 
 def normal_parametric_basis(polys, unknowns, parameters) -> tuple[pt.PolyTerms, ...]:
-    """Primitive over Z[parameters], positive leading coefficient, sorted (deterministic)."""
+    """Primitive over Z[parameters], positive leading coefficient, sorted (deterministic).
+
+    Each generator (terms over ``unknowns + parameters``, rational coefficients) is made an
+    integer polynomial and divided by the gcd of its coefficients as a polynomial in the
+    unknowns (Gauss's lemma: the content in Z[parameters]), with FLINT's multivariate gcd
+    and exact division; then :func:`_signed`.  The same generators as
+    :func:`normal_parametric_basis_sympy` (the primitive part is unique up to its sign,
+    which :func:`_signed` fixes), without sympy's expression arithmetic: pro_hep_lct's and
+    tripod_planar's lex bases took seconds there."""
+    try:
+        import flint
+    except ImportError:  # pragma: no cover - python-flint is a dependency
+        return normal_parametric_basis_sympy(polys, unknowns, parameters)
+    n = len(unknowns)
+    nvars = n + len(parameters)
+    ctx = flint.fmpz_mpoly_ctx.get(tuple(f"v{i}" for i in range(nvars)), "lex")
+    out = []
+    for terms in polys:
+        merged: dict[tuple[int, ...], Fraction] = {}
+        for e, c in terms:
+            merged[tuple(e)] = merged.get(tuple(e), Fraction(0)) + Fraction(c)
+        merged = {e: c for e, c in merged.items() if c}
+        if not merged:
+            continue
+        den = math.lcm(*(c.denominator for c in merged.values()))
+        ints = {e: int(c * den) for e, c in merged.items()}
+        groups: dict[tuple[int, ...], dict] = {}
+        for e, c in ints.items():
+            groups.setdefault(e[:n], {})[(0,) * n + e[n:]] = c
+        parts = sorted((ctx.from_dict(g) for g in groups.values()), key=len)
+        content = parts[0]
+        for part in parts[1:]:
+            if content.is_constant() and abs(int(content.coeffs()[0])) == 1:
+                break
+            content = content.gcd(part)
+        poly = ctx.from_dict(ints) / content  # exact: DomainError otherwise
+        out.append(_signed(pt.normal_form(
+            (tuple(int(k) for k in e), Fraction(int(c))) for e, c in poly.to_dict().items()),
+            n))
+    return _sorted_basis(out, n)
+
+
+def _signed(terms_out: pt.PolyTerms, n: int) -> pt.PolyTerms:
+    """The sign that makes the lex-leading coefficient (a polynomial in the parameters)
+    have a positive grevlex-leading coefficient."""
+    lead_u = max(e[:n] for e, _ in terms_out)
+    lead_terms = [(e[n:], c) for e, c in terms_out if e[:n] == lead_u]
+    _, c_lead = max(lead_terms, key=lambda t: pt.grevlex_key(t[0]))
+    return tuple((e, -c) for e, c in terms_out) if c_lead < 0 else terms_out
+
+
+def _sorted_basis(out: list[pt.PolyTerms], n: int) -> tuple[pt.PolyTerms, ...]:
+    return tuple(sorted(set(out), key=lambda p: (sorted((e[:n] for e, _ in p), reverse=True),
+                                                 [pt.grevlex_key(e) for e, _ in p])))
+
+
+def normal_parametric_basis_sympy(polys, unknowns, parameters) -> tuple[pt.PolyTerms, ...]:
+    """:func:`normal_parametric_basis` with sympy's expressions (together, Poly, gcd_list,
+    cancel): the reference the tests hold the FLINT form to, and the form used where
+    python-flint is missing."""
     gens = tuple(unknowns) + tuple(parameters)
     out = []
     for expr in as_expressions(polys, gens):
@@ -93,20 +154,9 @@ def normal_parametric_basis(polys, unknowns, parameters) -> tuple[pt.PolyTerms, 
         content = sp.gcd_list(poly.coeffs()) if len(poly.coeffs()) > 1 else poly.coeffs()[0]
         expr = sp.expand(sp.cancel(poly.as_expr() / content))
         full = sp.Poly(expr, *gens)
-        terms_out = pt.normal_form(
-            (e, pt.parse_rational(str(c))) for e, c in full.terms())
-        # sign: the lex-leading coefficient (a polynomial in the parameters) has a positive
-        # grevlex-leading coefficient
-        n = len(unknowns)
-        lead_u = max(e[:n] for e, _ in terms_out)
-        lead_terms = [(e[n:], c) for e, c in terms_out if e[:n] == lead_u]
-        _, c_lead = max(lead_terms, key=lambda t: pt.grevlex_key(t[0]))
-        if c_lead < 0:
-            terms_out = tuple((e, -c) for e, c in terms_out)
-        out.append(terms_out)
-    n = len(unknowns)
-    return tuple(sorted(set(out), key=lambda p: (sorted((e[:n] for e, _ in p), reverse=True),
-                                                 [pt.grevlex_key(e) for e, _ in p])))
+        out.append(_signed(pt.normal_form(
+            (e, pt.parse_rational(str(c))) for e, c in full.terms()), len(unknowns)))
+    return _sorted_basis(out, len(unknowns))
 
 
 @dataclass(frozen=True)
