@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 81793af44b7f0b1a80b588acafa23f9767f4782feb1c8abfa45bc9376bb2e196
+ * Derivation hash: 957740da22f49b26c38e18f85df44baa1b0d108730ba2c766aa6dbecf8c5c3b0
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "81793af44b7f0b1a80b588acafa23f9767f4782feb1c8abfa45bc9376bb2e196";
+const char bonered_derivation_hash[] = "957740da22f49b26c38e18f85df44baa1b0d108730ba2c766aa6dbecf8c5c3b0";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4c923afbf227e026d6a260965ff372834081b635ab556f41384c75024068e603
+ * Derivation hash: f1776819848d7af6be91ab42d34b293c982ea5b1267eadeb5c9061a3d31f6954
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "4c923afbf227e026d6a260965ff372834081b635ab556f41384c75024068e603";
+const char bonered_derivation_hash[] = "f1776819848d7af6be91ab42d34b293c982ea5b1267eadeb5c9061a3d31f6954";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 05049fc9a7b41a1ded169f1da34cf4012ecc8c8b15e0660062cffc2cbe1fb4f7
+ * Derivation hash: 14524389cdfd9cc6004e48993cd12a9767f2987cb9e98abd47f1c0dc3f8f6e34
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "05049fc9a7b41a1ded169f1da34cf4012ecc8c8b15e0660062cffc2cbe1fb4f7";
+const char bonered_derivation_hash[] = "14524389cdfd9cc6004e48993cd12a9767f2987cb9e98abd47f1c0dc3f8f6e34";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1bf4abe6ea47ff6205033ec7c3cccad90c023055dee87fcce7cdca62d0f05e03
+ * Derivation hash: 1c425b4fd4796c369c851a027e59ff473ab66ecee232778a951ee12e0c1b2cb6
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1bf4abe6ea47ff6205033ec7c3cccad90c023055dee87fcce7cdca62d0f05e03";
+const char bonered_derivation_hash[] = "1c425b4fd4796c369c851a027e59ff473ab66ecee232778a951ee12e0c1b2cb6";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1729f991dbd75a575b1320edfaf9d976a59f944c5d69081cb60b749f6538b212
+ * Derivation hash: badb410d9755a9e1900dc9965a4eb67e258de48c5943e51932a4a1ec5af72a4b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1729f991dbd75a575b1320edfaf9d976a59f944c5d69081cb60b749f6538b212";
+const char bonered_derivation_hash[] = "badb410d9755a9e1900dc9965a4eb67e258de48c5943e51932a4a1ec5af72a4b";
 int bonered_abi(void) { return 3; }
 #endif
 

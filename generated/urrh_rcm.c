@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 19c8fe035fe47a8986cd94c49ddb329a2ef4aa8d57b01a3342b7a733a0ee7cda
+ * Derivation hash: fa92fae4102f863ae6993a9f7dc229f7a41fabe9302b0b32e6b50db40588240e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "19c8fe035fe47a8986cd94c49ddb329a2ef4aa8d57b01a3342b7a733a0ee7cda";
+const char bonered_derivation_hash[] = "fa92fae4102f863ae6993a9f7dc229f7a41fabe9302b0b32e6b50db40588240e";
 int bonered_abi(void) { return 3; }
 #endif
 

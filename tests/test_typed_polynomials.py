@@ -267,3 +267,24 @@ def test_normal_parametric_basis_is_the_sympy_form(seed):
     assert got == normal_parametric_basis_sympy(basis, unknowns, parameters)
     for terms in got:  # primitive: no integer content left
         assert terms and math.gcd(*(int(c) for _, c in terms)) == 1
+
+
+@pytest.mark.parametrize("seed", range(16))
+def test_factor_list_as_sympy_is_sympys_factor_list(seed):
+    """pr.factor_list_as_sympy (FLINT's factors in sympy's order) is sympy.factor_list, to
+    the srepr of each factor and the order of the list: products of random polynomials
+    (some repeated, some of equal size), expanded; a product and a number go to sympy."""
+    rng = random.Random(2000 + seed)
+    parts = []
+    for _ in range(rng.randint(1, 4)):
+        f = _plain(_random_terms(rng, rng.choice((1, 2, 3, 4)), len(S)), S)
+        if f.free_symbols:
+            parts.append(f ** rng.choice((1, 1, 2)))
+    expr = sp.expand(sp.Rational(rng.choice((1, -3, 5)), rng.choice((1, 2))) * sp.Mul(*parts)
+                     + (0 if parts else S[0] + 2 * S[1]))
+    want = sp.factor_list(expr)
+    got = pr.factor_list_as_sympy(expr)
+    assert got[0] == want[0]
+    assert [(sp.srepr(f), k) for f, k in got[1]] == [(sp.srepr(f), k) for f, k in want[1]]
+    for other in (sp.Mul(*parts[:2]) if len(parts) > 1 else S[2] ** 2, sp.Integer(6)):
+        assert pr.factor_list_as_sympy(other) == sp.factor_list(other)

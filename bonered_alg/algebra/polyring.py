@@ -317,6 +317,42 @@ def factor_list(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
 
 
 
+def factor_list_as_sympy(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]]:
+    """``sympy.factor_list(expr)``: the same constant, the same factors (to their srepr) in
+    the same order, with each sum factored by FLINT (:func:`factor_list`).
+
+    sympy's steps, followed here: ``together(expr).as_numer_denom()``; each argument of the
+    numerator's product factored on its own generators (a number into the constant, a
+    symbol as it is, a sum by FLINT); equal factors merged; the list sorted by sympy's key
+    (``polytools._sorted_factors``: the dense representation's length in the factor's
+    generators, their number, the multiplicity, the representation).  Anything else (a
+    denominator with symbols, a power that is not a positive integer, a function) goes to
+    sympy itself."""
+    from sympy.polys.polytools import _sorted_factors
+
+    expr = sp.sympify(expr)
+    numer, denom = sp.together(expr).as_numer_denom()
+    if not denom.is_Number:
+        return sp.factor_list(expr)
+    constant = sp.S.One / denom
+    merged: dict[sp.Poly, int] = {}
+    for arg in sp.Mul.make_args(numer):
+        if arg.is_Number:
+            constant *= arg
+            continue
+        base, k = (arg.base, arg.exp) if arg.is_Pow else (arg, sp.S.One)
+        if not (k.is_Integer and k > 0) or not (base.is_Symbol or base.is_Add):
+            return sp.factor_list(expr)
+        gens = tuple(_sort_gens(base.free_symbols))
+        c, factors = factor_list(base) if base.is_Add else (sp.S.One, [(base, 1)])
+        constant *= c ** k
+        for f, m in factors:
+            poly = sp.Poly(f, *gens)
+            merged[poly] = merged.get(poly, 0) + int(m) * int(k)
+    return constant, [(p.as_expr(), m) for p, m in _sorted_factors(list(merged.items()),
+                                                                    "factor")]
+
+
 def _symbol_power(f: sp.Expr) -> tuple[sp.Expr, sp.Expr] | None:
     """``(symbol, k)`` for a factor ``symbol**k`` (``k`` a positive integer), else None."""
     base, k = (f.base, f.exp) if f.is_Pow else (f, sp.S.One)

@@ -8,6 +8,7 @@ from types import MappingProxyType
 
 import sympy as sp
 
+from ..algebra import polyring as pr
 from ..elimination.problem import EliminationProblem
 from ..errors import MechanismDefinitionError
 
@@ -49,7 +50,7 @@ class InputSpaceSingularities:
                     tuple(sp.expand(e) for e in (*gens, f)), pose, keep)
                 res = algebra.eliminate(problem)
                 for g in res.generators:
-                    for ff, _k in sp.factor_list(g)[1]:
+                    for ff, _k in pr.factor_list_as_sympy(g)[1]:
                         if ff.free_symbols & set(mech.joints):
                             facs.append((ff, frozenset(ff.free_symbols)))
             out[poly.name] = tuple(facs)
