@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 957740da22f49b26c38e18f85df44baa1b0d108730ba2c766aa6dbecf8c5c3b0
+ * Derivation hash: b9996450b22012ce8c0443e61b7b9545e9c80348d1cbc49844610dbc761e8f3f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "957740da22f49b26c38e18f85df44baa1b0d108730ba2c766aa6dbecf8c5c3b0";
+const char bonered_derivation_hash[] = "b9996450b22012ce8c0443e61b7b9545e9c80348d1cbc49844610dbc761e8f3f";
 int bonered_abi(void) { return 3; }
 #endif
 

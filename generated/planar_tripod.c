@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f1776819848d7af6be91ab42d34b293c982ea5b1267eadeb5c9061a3d31f6954
+ * Derivation hash: f610d810d4ce22ca23198188246c4e9150811b99bf435f351a7abf1f2199e4ea
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f1776819848d7af6be91ab42d34b293c982ea5b1267eadeb5c9061a3d31f6954";
+const char bonered_derivation_hash[] = "f610d810d4ce22ca23198188246c4e9150811b99bf435f351a7abf1f2199e4ea";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 14524389cdfd9cc6004e48993cd12a9767f2987cb9e98abd47f1c0dc3f8f6e34
+ * Derivation hash: ee238e7d10f7fdf44cecdff0e8f4dbc62be59bf93a536ee7bb15b5ee813dc66e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "14524389cdfd9cc6004e48993cd12a9767f2987cb9e98abd47f1c0dc3f8f6e34";
+const char bonered_derivation_hash[] = "ee238e7d10f7fdf44cecdff0e8f4dbc62be59bf93a536ee7bb15b5ee813dc66e";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1c425b4fd4796c369c851a027e59ff473ab66ecee232778a951ee12e0c1b2cb6
+ * Derivation hash: 99975fab3ef1fd41001bb9908e3bac8072f84335569c329ff2dfcc9e6d64c691
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1c425b4fd4796c369c851a027e59ff473ab66ecee232778a951ee12e0c1b2cb6";
+const char bonered_derivation_hash[] = "99975fab3ef1fd41001bb9908e3bac8072f84335569c329ff2dfcc9e6d64c691";
 int bonered_abi(void) { return 3; }
 #endif
 

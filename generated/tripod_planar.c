@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: badb410d9755a9e1900dc9965a4eb67e258de48c5943e51932a4a1ec5af72a4b
+ * Derivation hash: ac95cdef69c06c22bec1e9ecf7f8b3836a4a846637e6ffb5de2d9b0e199f798a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "badb410d9755a9e1900dc9965a4eb67e258de48c5943e51932a4a1ec5af72a4b";
+const char bonered_derivation_hash[] = "ac95cdef69c06c22bec1e9ecf7f8b3836a4a846637e6ffb5de2d9b0e199f798a";
 int bonered_abi(void) { return 3; }
 #endif
 

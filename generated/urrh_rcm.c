@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fa92fae4102f863ae6993a9f7dc229f7a41fabe9302b0b32e6b50db40588240e
+ * Derivation hash: 4d23f23b2766bf345f1ff273455a36743450eabba407bb9bbc54232416f943aa
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fa92fae4102f863ae6993a9f7dc229f7a41fabe9302b0b32e6b50db40588240e";
+const char bonered_derivation_hash[] = "4d23f23b2766bf345f1ff273455a36743450eabba407bb9bbc54232416f943aa";
 int bonered_abi(void) { return 3; }
 #endif
 

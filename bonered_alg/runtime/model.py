@@ -775,8 +775,20 @@ def _chunked(pose, par, fn):
                     for r in part]
         for o, r in zip(outs, part):
             if o is not None:
-                o[lo:hi] = r
+                _copy_rows(o[lo:hi], r)
     return tuple(None if o is None else o.reshape(shape + o.shape[1:]) for o in outs)
+
+
+def _copy_rows(dest, r):
+    """``dest[...] = r``; a few columns of a transposed view (the kernels' rows as the
+    joints' columns) column by column: numpy copies such a view row by row, each row a loop
+    of a few elements (a chunk of three joints: 59 us against 16 on this project's
+    machine)."""
+    if r.ndim == 2 and 1 < r.shape[1] <= 6 and r.strides[0] < r.strides[1]:
+        for j in range(r.shape[1]):
+            dest[:, j] = r[:, j]
+    else:
+        dest[...] = r
 
 
 def _chunked_into(pose, par, specs, fn):
