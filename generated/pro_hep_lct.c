@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ee238e7d10f7fdf44cecdff0e8f4dbc62be59bf93a536ee7bb15b5ee813dc66e
+ * Derivation hash: f449edfbf7f7723f4e32a4c576823377c19ba73a8b1ffc065ce2b5b1b4957656
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ee238e7d10f7fdf44cecdff0e8f4dbc62be59bf93a536ee7bb15b5ee813dc66e";
+const char bonered_derivation_hash[] = "f449edfbf7f7723f4e32a4c576823377c19ba73a8b1ffc065ce2b5b1b4957656";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -286,3 +286,19 @@ def test_platform_velocity_against_finite_differences(gen):
 def test_tool_functions_need_the_generated_module():
     with pytest.raises(TypeError, match="pass the generated module"):
         tool.platform_from_points(np.array([300.0, 180.0, 239.0, 180.0]), 0)
+
+
+@pytest.mark.parametrize("batch", [1, 7, 36, 500])
+def test_reachable_in_every_is_reachable_all(gen, batch):
+    """tool.reachable_in_every (directions in batches, each only where every earlier one
+    was reached) gives reachable(...).all(-1), on a grid with dexterous, partly reachable
+    and unreachable points, in the grid's shape."""
+    xs, ys = np.arange(140.0, 420.0, 20.0), np.arange(-40.0, 440.0, 30.0)
+    gx, gy = np.meshgrid(xs, ys, indexing="ij")
+    pts = np.stack([gx, gy, np.full_like(gx, -110.0)], axis=-1)
+    cone = tool.cone_directions(30.0, tilts=3, azimuths=12)
+    want = tool.reachable(pts, cone, gen, 1).all(axis=-1)
+    got = tool.reachable_in_every(pts, cone, gen, 1, batch=batch)
+    assert got.shape == pts.shape[:-1] and np.array_equal(got, want)
+    some = tool.reachable(pts, cone, gen, 1).any(axis=-1)
+    assert want.any() and (some & ~want).any() and (~some).any()

@@ -30,7 +30,7 @@ def workspace(gen) -> dict:
     pts = np.stack([gx, gy, np.full_like(gx, -DEPTH)], axis=-1)
     cone = tool.cone_directions(CONE_DEG)
     vertical = tool.reachable(pts, np.array([[0.0, 0.0, 1.0]]), gen, TABLE5_MODE)[..., 0]
-    dexterous = tool.reachable(pts, cone, gen, TABLE5_MODE).all(axis=-1)
+    dexterous = tool.reachable_in_every(pts, cone, gen, TABLE5_MODE)
     c = gen.PARAMETERS["c"]
     planar = np.stack([gx, gy, gx - c, gy], axis=-1)
     q = gen.ik(planar, mode=TABLE5_MODE, limits=False)
@@ -39,7 +39,7 @@ def workspace(gen) -> dict:
     study = []
     for depth in DEPTH_STUDY:
         lp = np.stack([line_x, np.full_like(line_x, 180.0), np.full_like(line_x, -depth)], -1)
-        ok = tool.reachable(lp, cone, gen, TABLE5_MODE).all(axis=-1)
+        ok = tool.reachable_in_every(lp, cone, gen, TABLE5_MODE)
         study.append((depth, float(line_x[ok].min()) if ok.any() else None,
                       float(line_x[ok].max()) if ok.any() else None))
     return {"X": xs, "Y": ys, "vertical": vertical, "dexterous": dexterous,
