@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f610d810d4ce22ca23198188246c4e9150811b99bf435f351a7abf1f2199e4ea
+ * Derivation hash: d2b412b32f9bf604d6c79e46eee4ada1767fc412317451759ac2fefcd06c09f5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f610d810d4ce22ca23198188246c4e9150811b99bf435f351a7abf1f2199e4ea";
+const char bonered_derivation_hash[] = "d2b412b32f9bf604d6c79e46eee4ada1767fc412317451759ac2fefcd06c09f5";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f449edfbf7f7723f4e32a4c576823377c19ba73a8b1ffc065ce2b5b1b4957656
+ * Derivation hash: 3554b033ff1a5a66b76a4ecfee095c6ff7250cd00da6691bdcd4984484861f97
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f449edfbf7f7723f4e32a4c576823377c19ba73a8b1ffc065ce2b5b1b4957656";
+const char bonered_derivation_hash[] = "3554b033ff1a5a66b76a4ecfee095c6ff7250cd00da6691bdcd4984484861f97";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 99975fab3ef1fd41001bb9908e3bac8072f84335569c329ff2dfcc9e6d64c691
+ * Derivation hash: 3af112498a6ffb14cc2f994efc46047b9b7ffb5287edf36bd2e525aa8f7a61d4
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "99975fab3ef1fd41001bb9908e3bac8072f84335569c329ff2dfcc9e6d64c691";
+const char bonered_derivation_hash[] = "3af112498a6ffb14cc2f994efc46047b9b7ffb5287edf36bd2e525aa8f7a61d4";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ac95cdef69c06c22bec1e9ecf7f8b3836a4a846637e6ffb5de2d9b0e199f798a
+ * Derivation hash: b138d395df6b3db8065b0caf51ff009c216e349793020e4e3eebb8c4d64fde8b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ac95cdef69c06c22bec1e9ecf7f8b3836a4a846637e6ffb5de2d9b0e199f798a";
+const char bonered_derivation_hash[] = "b138d395df6b3db8065b0caf51ff009c216e349793020e4e3eebb8c4d64fde8b";
 int bonered_abi(void) { return 3; }
 #endif
 

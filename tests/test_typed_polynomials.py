@@ -288,3 +288,22 @@ def test_factor_list_as_sympy_is_sympys_factor_list(seed):
     assert [(sp.srepr(f), k) for f, k in got[1]] == [(sp.srepr(f), k) for f, k in want[1]]
     for other in (sp.Mul(*parts[:2]) if len(parts) > 1 else S[2] ** 2, sp.Integer(6)):
         assert pr.factor_list_as_sympy(other) == sp.factor_list(other)
+
+
+@pytest.mark.parametrize("seed", range(25))
+def test_jacobian_is_sympys_jacobian(seed):
+    """pr.jacobian (each expanded polynomial differentiated on its monomials) gives the
+    expressions of sympy's Matrix.jacobian, to their srepr: random polynomials with rational
+    coefficients and a constant term, a variable absent from a row, and a row sympy keeps
+    (a product, a square root)."""
+    rng = random.Random(3000 + seed)
+    exprs = [_plain(_random_terms(rng, rng.choice((1, 2, 6, 20)), len(S)), S)
+             for _ in range(rng.randint(1, 3))]
+    exprs.append(sp.Integer(rng.choice((0, 5))) + S[0] ** 3 / 3)
+    if seed % 4 == 0:
+        exprs.append(S[1] * (S[2] + 1) + sp.sqrt(3) * S[3])
+    variables = [S[k] for k in rng.sample(range(len(S)), 3)] + [sp.Symbol("absent")]
+    want = sp.Matrix(exprs).jacobian(variables)
+    got = pr.jacobian(exprs, variables)
+    assert got.shape == want.shape
+    assert [sp.srepr(x) for x in got] == [sp.srepr(x) for x in want]

@@ -109,6 +109,34 @@ def determinant(m: Sequence[Sequence[PolyElement]]) -> PolyElement:
     return out
 
 
+def jacobian(exprs: Sequence[sp.Expr], variables: Sequence[sp.Symbol]) -> sp.Matrix:
+    """``sp.Matrix(exprs).jacobian(variables)``, the same expressions: each expanded
+    polynomial with rational coefficients differentiated on its monomials and written back
+    by :func:`expression` (sympy's ``diff`` of such a sum is the canonical sum of the
+    differentiated monomials, which ``expression`` builds without flattening); any other
+    expression differentiated by sympy."""
+    exprs = [sp.sympify(e) for e in exprs]
+    variables = list(variables)
+    gens = tuple(_sort_gens(set().union(*(e.free_symbols for e in exprs)) | set(variables)))
+    at = [gens.index(v) for v in variables]
+    powers: dict = {}
+    rows = []
+    for e in exprs:
+        terms = terms_of(e, gens)
+        if terms is None:
+            rows.append([sp.diff(e, v) for v in variables])
+            continue
+        row = []
+        for i in at:
+            rates = {}
+            for ex, c in terms.items():
+                if ex[i]:
+                    rates[ex[:i] + (ex[i] - 1,) + ex[i + 1:]] = c * ex[i]
+            row.append(expression(rates.items(), gens, powers))
+        rows.append(row)
+    return sp.Matrix(len(exprs), len(variables), [x for row in rows for x in row])
+
+
 def jacobian_determinant(exprs: Sequence[sp.Expr], variables: Sequence[sp.Symbol]) -> sp.Expr:
     """``sp.expand(Matrix(exprs).jacobian(variables).det())`` of polynomials with rational
     coefficients, the same expression, differentiated and expanded in ``Q[symbols]`` (the

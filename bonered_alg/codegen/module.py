@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from ..algebra import polyring as pr
 from ..declaration.parameters import Parameter
 from ..kinematics.ik_plan import IKStep
 from ..kinematics.rps_forward import DEGREE_BOUND, RPSSystem
@@ -341,7 +342,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         system = sp.Matrix(list(spec.fk_system))
         kernels.append(kernel(
             "_fk_newton", [*spec.fk_unknowns, *spec.joints, *par],
-            list(system) + list(system.jacobian(sp.Matrix(list(spec.fk_unknowns)))),
+            list(system) + list(pr.jacobian(list(system), spec.fk_unknowns)),
             "Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major)."))
     compact = spec.compact or {}
     gens = [compact[st.joint].generator() if st.joint in compact else sp.expand(st.generator)
@@ -349,7 +350,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     args = [*spec.pose, *spec.joints, *par]
     g_pose = [g.xreplace(sub) for g in gens]
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
-    jo_study = sp.Matrix(gens).jacobian(sp.Matrix(study)).xreplace(sub)
+    jo_study = pr.jacobian(gens, study).xreplace(sub)
     tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, lean, spec.leg_lines)
     # pivots of linear steps that can vanish (a constant pivot never does)
     linear = [k for k, st in enumerate(spec.steps)

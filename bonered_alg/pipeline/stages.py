@@ -30,6 +30,7 @@ from types import ModuleType
 import sympy as sp
 
 from .. import __version__
+from ..algebra import polyring as pr
 from ..declaration.mechanism import (
     ExtraGenerator,
     InputFunction,
@@ -109,8 +110,8 @@ def _velocity_and_singularities(mech: Mechanism, steps: tuple[IKStep, ...]):
         gens = sp.Matrix([s.generator for s in csteps])
         joints = sp.Matrix([s.joint for s in csteps])
         pose = [p for p in closure.pose if any(p in s.generator.free_symbols for s in csteps)]
-        ji = gens.jacobian(joints)
-        jo = gens.jacobian(sp.Matrix(pose))
+        ji = pr.jacobian(list(gens), list(joints))  # Matrix.jacobian's expressions
+        jo = pr.jacobian(list(gens), pose)
         velocity.append(ClosureVelocity(closure.name, tuple(joints), tuple(pose),
                                         sp.ImmutableMatrix(ji), sp.ImmutableMatrix(jo)))
         diag = [ji[i, i] for i in range(ji.shape[0])]
