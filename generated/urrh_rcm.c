@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8361d352764e05a805d886d52a211e1d4009902a3f5a3c931841c4fd52c95265
+ * Derivation hash: 5d28b6538e9ff376cc639f34d33e4daaf1b278bf042821b2221933380758eea0
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8361d352764e05a805d886d52a211e1d4009902a3f5a3c931841c4fd52c95265";
+const char bonered_derivation_hash[] = "5d28b6538e9ff376cc639f34d33e4daaf1b278bf042821b2221933380758eea0";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -4,6 +4,7 @@ numeric models, boundary search, command line, plots."""
 from __future__ import annotations
 
 import math
+import os
 import re
 
 import numpy as np
@@ -568,18 +569,36 @@ def test_process_workers_are_kept_between_scans_and_give_the_same_scan(monkeypat
         g = _small_grid()
         ref = scan("tripod_planar", g, workers=1, chunk=1 << 16)
         first = scan("tripod_planar", g, workers=2, chunk=64)
-        pool = scan_module._POOLS[2]
+        key = (os.getpid(), 2)
+        pool = scan_module._POOLS[key]
         again = scan("tripod_planar", g, workers=2, chunk=128)
-        assert scan_module._POOLS[2] is pool
+        assert scan_module._POOLS[key] is pool
         for other in (first, again):
             assert other.count == ref.count and np.array_equal(other.mask, ref.mask)
             assert other.ranges == ref.ranges and other.reasons == ref.reasons
         scan_module.shutdown_pools()
         assert not scan_module._POOLS
         third = scan("tripod_planar", g, workers=2, chunk=64)
-        assert np.array_equal(third.mask, ref.mask) and scan_module._POOLS[2] is not pool
+        assert np.array_equal(third.mask, ref.mask) and scan_module._POOLS[key] is not pool
     finally:
         scan_module.shutdown_pools()
+
+
+def test_kept_workers_belong_to_the_process_that_started_them(monkeypatch):
+    """A forked child (another process id) gets a pool of its own and its shutdown_pools
+    leaves the parent's alone (no process starts: a pool spawns its workers on first use)."""
+    from bonered_alg.workspace import scan as scan_module
+
+    parent = scan_module._process_pool(3)
+    real = os.getpid()
+    monkeypatch.setattr(scan_module.os, "getpid", lambda: real + 1)
+    child = scan_module._process_pool(3)
+    assert child is not parent and scan_module._process_pool(3) is child
+    scan_module.shutdown_pools()
+    monkeypatch.setattr(scan_module.os, "getpid", lambda: real)
+    assert scan_module._process_pool(3) is parent
+    scan_module.shutdown_pools()
+    assert not scan_module._POOLS
 
 
 def test_polynomial_signs_on_threads_equal_one_thread():

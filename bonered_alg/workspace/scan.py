@@ -163,29 +163,30 @@ def compiled_path(module, params: Mapping) -> bool:
 # the spawned worker processes, kept for the next scan of this process: starting two costs
 # about 0.3 s (the interpreter, numpy, the runtime and the generated module), more than a
 # scan of half a million samples takes on one core; the comparison study scans 19 grids
-_POOLS: dict[int, ProcessPoolExecutor] = {}
+_POOLS: dict[tuple[int, int], ProcessPoolExecutor] = {}  # (this process's id, workers)
 _POOLS_LOCK = threading.Lock()
 
 
 def _process_pool(workers: int) -> ProcessPoolExecutor:
     """A pool of ``workers`` spawned processes, started on first use and kept (a broken one,
-    e.g. after a worker was killed, is replaced)."""
+    e.g. after a worker was killed, is replaced).  Kept per process: a forked child starts
+    its own and never touches its parent's."""
+    key = (os.getpid(), workers)
     with _POOLS_LOCK:
-        pool = _POOLS.get(workers)
+        pool = _POOLS.get(key)
         if pool is None or getattr(pool, "_broken", False):
             if pool is not None:
                 pool.shutdown(wait=False, cancel_futures=True)
             pool = ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"))
-            _POOLS[workers] = pool
+            _POOLS[key] = pool
         return pool
 
 
 def shutdown_pools() -> None:
-    """Stop the kept worker processes (they also stop when this process exits)."""
+    """Stop this process's kept worker processes (they also stop when it exits)."""
     with _POOLS_LOCK:
-        for pool in _POOLS.values():
-            pool.shutdown(wait=True, cancel_futures=True)
-        _POOLS.clear()
+        for key in [k for k in _POOLS if k[0] == os.getpid()]:
+            _POOLS.pop(key).shutdown(wait=True, cancel_futures=True)
 
 
 def _run_local(tasks, workers, progress, threads=False):
