@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 03e4bfc41bb6b70cb3a396bc0f1aa6ea3ad599e89eea9d9930d37d062333576e
+ * Derivation hash: 2f75db8eff053a31d211d074f208c9c932c167d5243682d8f9274694c273fcb4
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "03e4bfc41bb6b70cb3a396bc0f1aa6ea3ad599e89eea9d9930d37d062333576e";
+const char bonered_derivation_hash[] = "2f75db8eff053a31d211d074f208c9c932c167d5243682d8f9274694c273fcb4";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d2b412b32f9bf604d6c79e46eee4ada1767fc412317451759ac2fefcd06c09f5
+ * Derivation hash: da179076be1c785ab0d5638badf056b2f470e0df43b12107acfd4f827067a19e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d2b412b32f9bf604d6c79e46eee4ada1767fc412317451759ac2fefcd06c09f5";
+const char bonered_derivation_hash[] = "da179076be1c785ab0d5638badf056b2f470e0df43b12107acfd4f827067a19e";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3554b033ff1a5a66b76a4ecfee095c6ff7250cd00da6691bdcd4984484861f97
+ * Derivation hash: 15ca58cc0277671e7b9a0a00604134a51d523b0da86ba716099a9e45e94183a9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3554b033ff1a5a66b76a4ecfee095c6ff7250cd00da6691bdcd4984484861f97";
+const char bonered_derivation_hash[] = "15ca58cc0277671e7b9a0a00604134a51d523b0da86ba716099a9e45e94183a9";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3af112498a6ffb14cc2f994efc46047b9b7ffb5287edf36bd2e525aa8f7a61d4
+ * Derivation hash: 43b9159cb79963207d094a280d0400570a6309b8ff341ba8853c484481f15f8d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3af112498a6ffb14cc2f994efc46047b9b7ffb5287edf36bd2e525aa8f7a61d4";
+const char bonered_derivation_hash[] = "43b9159cb79963207d094a280d0400570a6309b8ff341ba8853c484481f15f8d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b138d395df6b3db8065b0caf51ff009c216e349793020e4e3eebb8c4d64fde8b
+ * Derivation hash: 3f9626846ebbee0f0e0410ffa7d27a648bcaac3241a9fb7fbd011f162d504811
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b138d395df6b3db8065b0caf51ff009c216e349793020e4e3eebb8c4d64fde8b";
+const char bonered_derivation_hash[] = "3f9626846ebbee0f0e0410ffa7d27a648bcaac3241a9fb7fbd011f162d504811";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5d28b6538e9ff376cc639f34d33e4daaf1b278bf042821b2221933380758eea0
+ * Derivation hash: 49c4affc1ef45964637e73a7a28b643ed6555cd3fb80de6c320c558506748b01
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5d28b6538e9ff376cc639f34d33e4daaf1b278bf042821b2221933380758eea0";
+const char bonered_derivation_hash[] = "49c4affc1ef45964637e73a7a28b643ed6555cd3fb80de6c320c558506748b01";
 int bonered_abi(void) { return 3; }
 #endif
 

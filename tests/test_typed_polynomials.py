@@ -286,7 +286,8 @@ def test_factor_list_as_sympy_is_sympys_factor_list(seed):
     got = pr.factor_list_as_sympy(expr)
     assert got[0] == want[0]
     assert [(sp.srepr(f), k) for f, k in got[1]] == [(sp.srepr(f), k) for f, k in want[1]]
-    for other in (sp.Mul(*parts[:2]) if len(parts) > 1 else S[2] ** 2, sp.Integer(6)):
+    for other in (sp.Mul(*parts[:2]) if len(parts) > 1 else S[2] ** 2, sp.Integer(6),
+                  sp.expand((sp.sqrt(3) * S[0] + S[1]) * (S[0] - 2 * S[2]))):
         assert pr.factor_list_as_sympy(other) == sp.factor_list(other)
 
 

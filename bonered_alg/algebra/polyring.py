@@ -372,6 +372,8 @@ def factor_list_as_sympy(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, in
         if not (k.is_Integer and k > 0) or not (base.is_Symbol or base.is_Add):
             return sp.factor_list(expr)
         gens = tuple(_sort_gens(base.free_symbols))
+        if base.is_Add and terms_of(base, gens) is None:  # sympy's generators differ
+            return sp.factor_list(expr)  # (sqrt(3) would be one): its own order
         c, factors = factor_list(base) if base.is_Add else (sp.S.One, [(base, 1)])
         constant *= c ** k
         for f, m in factors:
