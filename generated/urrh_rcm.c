@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 49c4affc1ef45964637e73a7a28b643ed6555cd3fb80de6c320c558506748b01
+ * Derivation hash: 09d4e21e58c79a44f3be5154966ac12bbff0bccdac481c4916be520a582c0a1a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "49c4affc1ef45964637e73a7a28b643ed6555cd3fb80de6c320c558506748b01";
+const char bonered_derivation_hash[] = "09d4e21e58c79a44f3be5154966ac12bbff0bccdac481c4916be520a582c0a1a";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -190,8 +190,7 @@ def shutdown_pools() -> None:
 
 
 def _run_local(tasks, workers, progress, threads=False):
-    workers = max(1, min(workers, len(tasks)))  # one task: in this process
-    if workers == 1:
+    if workers == 1 or len(tasks) <= 1:  # one task: in this process
         out = []
         for i, t in enumerate(tasks):
             out.append(scan_chunk(*t))
