@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2f75db8eff053a31d211d074f208c9c932c167d5243682d8f9274694c273fcb4
+ * Derivation hash: 07cb252ed56cb59deb400acb89f4ae768eb30f87ccd704090c9f78e367bf6119
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2f75db8eff053a31d211d074f208c9c932c167d5243682d8f9274694c273fcb4";
+const char bonered_derivation_hash[] = "07cb252ed56cb59deb400acb89f4ae768eb30f87ccd704090c9f78e367bf6119";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 15ca58cc0277671e7b9a0a00604134a51d523b0da86ba716099a9e45e94183a9
+ * Derivation hash: e0a356d26ace38e27ac17afdc78d57fc21edf0d9eeb019df62436aee230b88ac
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "15ca58cc0277671e7b9a0a00604134a51d523b0da86ba716099a9e45e94183a9";
+const char bonered_derivation_hash[] = "e0a356d26ace38e27ac17afdc78d57fc21edf0d9eeb019df62436aee230b88ac";
 int bonered_abi(void) { return 3; }
 #endif
 

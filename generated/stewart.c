@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 43b9159cb79963207d094a280d0400570a6309b8ff341ba8853c484481f15f8d
+ * Derivation hash: ef8f58909757c7df067c37998b83b2ca3b1b63a2bab05618e84a0dafe3672fe9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "43b9159cb79963207d094a280d0400570a6309b8ff341ba8853c484481f15f8d";
+const char bonered_derivation_hash[] = "ef8f58909757c7df067c37998b83b2ca3b1b63a2bab05618e84a0dafe3672fe9";
 int bonered_abi(void) { return 3; }
 #endif
 

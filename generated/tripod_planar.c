@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3f9626846ebbee0f0e0410ffa7d27a648bcaac3241a9fb7fbd011f162d504811
+ * Derivation hash: a4de0b9e2a564a8f4fe1150e670f22dd06d3821bf3f8f353a2d14403e8aec1d7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3f9626846ebbee0f0e0410ffa7d27a648bcaac3241a9fb7fbd011f162d504811";
+const char bonered_derivation_hash[] = "a4de0b9e2a564a8f4fe1150e670f22dd06d3821bf3f8f353a2d14403e8aec1d7";
 int bonered_abi(void) { return 3; }
 #endif
 

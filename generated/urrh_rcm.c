@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 09d4e21e58c79a44f3be5154966ac12bbff0bccdac481c4916be520a582c0a1a
+ * Derivation hash: 137220034414dc9b0bf098bf1973f2cecd186a1405a1d30dc82e4a66477d87d0
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "09d4e21e58c79a44f3be5154966ac12bbff0bccdac481c4916be520a582c0a1a";
+const char bonered_derivation_hash[] = "137220034414dc9b0bf098bf1973f2cecd186a1405a1d30dc82e4a66477d87d0";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import hashlib
-import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 
@@ -102,14 +101,11 @@ def normal_parametric_basis(polys, unknowns, parameters) -> tuple[pt.PolyTerms, 
     ctx = flint.fmpz_mpoly_ctx.get(tuple(f"v{i}" for i in range(nvars)), "lex")
     out = []
     for terms in polys:
-        merged: dict[tuple[int, ...], Fraction] = {}
-        for e, c in terms:
-            merged[tuple(e)] = merged.get(tuple(e), Fraction(0)) + Fraction(c)
-        merged = {e: c for e, c in merged.items() if c}
-        if not merged:
+        # equal monomials merged, integer coefficients (the integer content and the sign
+        # go too, which the division below and _signed settle anyway)
+        ints = {e: int(c) for e, c in pt.normal_form(terms)}
+        if not ints:
             continue
-        den = math.lcm(*(c.denominator for c in merged.values()))
-        ints = {e: int(c * den) for e, c in merged.items()}
         groups: dict[tuple[int, ...], dict] = {}
         for e, c in ints.items():
             groups.setdefault(e[:n], {})[(0,) * n + e[n:]] = c
