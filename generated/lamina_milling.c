@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 07cb252ed56cb59deb400acb89f4ae768eb30f87ccd704090c9f78e367bf6119
+ * Derivation hash: 58a19225de8d6c6415981866ebaa7f9af78f5571868dfcfea0e577cdf1763fbc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "07cb252ed56cb59deb400acb89f4ae768eb30f87ccd704090c9f78e367bf6119";
+const char bonered_derivation_hash[] = "58a19225de8d6c6415981866ebaa7f9af78f5571868dfcfea0e577cdf1763fbc";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a664ced62d240ca5112538f87d36f1721b340022cfffe2a2c4e23f4768853832
+ * Derivation hash: bb418ae3faf8a241ab1b0b50139c614ef11d60d3d68695f9c423b01b2aedb6c5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a664ced62d240ca5112538f87d36f1721b340022cfffe2a2c4e23f4768853832";
+const char bonered_derivation_hash[] = "bb418ae3faf8a241ab1b0b50139c614ef11d60d3d68695f9c423b01b2aedb6c5";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e0a356d26ace38e27ac17afdc78d57fc21edf0d9eeb019df62436aee230b88ac
+ * Derivation hash: 9b4f423c4762764e2294f9ef78be4b1840a21dd873c4bd96a2574559fe0a7977
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e0a356d26ace38e27ac17afdc78d57fc21edf0d9eeb019df62436aee230b88ac";
+const char bonered_derivation_hash[] = "9b4f423c4762764e2294f9ef78be4b1840a21dd873c4bd96a2574559fe0a7977";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a4de0b9e2a564a8f4fe1150e670f22dd06d3821bf3f8f353a2d14403e8aec1d7
+ * Derivation hash: 37b1abbbf9e40ebd80a46e25175ff8c747caf26a58ee8249e486264aa422773b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a4de0b9e2a564a8f4fe1150e670f22dd06d3821bf3f8f353a2d14403e8aec1d7";
+const char bonered_derivation_hash[] = "37b1abbbf9e40ebd80a46e25175ff8c747caf26a58ee8249e486264aa422773b";
 int bonered_abi(void) { return 3; }
 #endif
 

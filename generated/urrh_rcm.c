@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 137220034414dc9b0bf098bf1973f2cecd186a1405a1d30dc82e4a66477d87d0
+ * Derivation hash: 8e698d0a5a20ea576515b44a656b1997d7809d1f9c2d8f0b310e77597b08be74
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "137220034414dc9b0bf098bf1973f2cecd186a1405a1d30dc82e4a66477d87d0";
+const char bonered_derivation_hash[] = "8e698d0a5a20ea576515b44a656b1997d7809d1f9c2d8f0b310e77597b08be74";
 int bonered_abi(void) { return 3; }
 #endif
 

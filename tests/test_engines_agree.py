@@ -76,3 +76,23 @@ def test_algebraic_constant_runs_over_the_extension_field():
     assert got == SympyEngine().eliminate(toy, 60)
     # <x^2 - 6, s3^2 - 3>: the only relation between x and s3 is none beyond these
     assert len(got) == 2
+
+
+def test_saturation_variable_eliminated_first():
+    """A Rabinowitsch variable (one equation ``w d - 1``) is removed in a stage of its own;
+    the basis is the one sympy's single elimination gives: the unit circle, from its
+    tan-half-angle parametrization x = (1 - t^2)/(1 + t^2), y = 2t/(1 + t^2)."""
+    from bonered_alg.elimination.engines import _elimination_stages
+
+    t, w, x, y = sp.symbols("t w x y")
+    problem = EliminationProblem("circle (test)", (x * (1 + t**2) - (1 - t**2),
+                                                   y * (1 + t**2) - 2 * t,
+                                                   w * (1 + t**2) - 1), (t, w), (x, y))
+    assert _elimination_stages(problem.equation_terms(), 2) == [[1], [0]]
+    assert SingularEngine().script(problem).count("eliminate(") == 2
+    a = SympyEngine().eliminate(problem, 120)
+    assert a == SingularEngine().eliminate(problem, 120)
+    # the one generator, as written independently here: x^2 + y^2 - 1 up to sign
+    assert len(a) == 1
+    got = {e: c for e, c in a[0]}
+    assert got in ({(2, 0): 1, (0, 2): 1, (0, 0): -1}, {(2, 0): -1, (0, 2): -1, (0, 0): 1})

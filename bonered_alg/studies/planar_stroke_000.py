@@ -9,9 +9,10 @@ reproduces those three printed ranges, with everything else as in the Table 2 se
 1's tripod limits) and the workspace counted as the home component
 (:mod:`..workspace.components`).
 
-The inverse kinematics and the singularity signs are evaluated once on the search grid;
-each candidate range is then a mask, a connected-component labelling and the extents.  A
-5 mm lattice of candidates is refined to 1 mm around its best point.
+The inverse kinematics and the singularity signs are evaluated once on the search grid
+(the signs only where some candidate range can reach: a sixth of the grid); each candidate
+range is then a mask, a connected-component labelling and the extents.  A 5 mm lattice of
+candidates is refined to 1 mm around its best point.
 """
 
 from __future__ import annotations
@@ -23,20 +24,17 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..workspace.components import (
-    HomeNotReachable,
-    SignSides,
-    home_component,
-    nearest_index,
-    signs_near_reachable,
-)
+from ..workspace.components import HomeNotReachable, SignSides, home_component, nearest_index
 from ..workspace.membership import Criteria, load_module
 from ..workspace.scan import scan
+from ..workspace.singular_loci import polynomial_signs
 from .bone_reduction import TABLE2_000, slice_extents, table2_setups, xyg_grid
 
 SEARCH_AXES = dict(x=(-160.0, 160.0, 4.0), y=(-160.0, 160.0, 4.0), gamma=(-90.0, 90.0, 1.0))
 COARSE = (np.arange(100.0, 216.0, 5.0), np.arange(225.0, 351.0, 5.0))  # q_min, q_max (mm)
 REFINE = 5  # mm either side of the coarse optimum, 1 mm steps
+# every candidate (q_min, q_max) lies within these: the coarse lattice and its refinement
+BOUNDS = (float(COARSE[0].min()) - REFINE, float(COARSE[1].max()) + REFINE)
 TARGET = {k: float(TABLE2_000["planar_tripod"][k]) for k in ("x", "y", "gamma")}
 PLANAR = "q[123]"
 HOME = {"x": 0.0, "y": 0.0, "gamma": 0.0}
@@ -67,7 +65,8 @@ class StrokeFit:
 
 
 class _Search:
-    """The Table 2 (x, y, gamma) slice of ``planar_tripod`` with the planar strokes free."""
+    """The Table 2 (x, y, gamma) slice of ``planar_tripod`` with the planar strokes free;
+    candidate ranges within ``BOUNDS``."""
 
     def __init__(self, workers: int | None = None):
         setup = next(s for s in table2_setups() if s.mechanism == "planar_tripod"
@@ -77,7 +76,6 @@ class _Search:
         self.res = scan("planar_tripod", xyg_grid(module.POSE, setup.height, SEARCH_AXES), free,
                         workers=workers)
         self.height = setup.height
-        signs = signs_near_reachable(self.res)
         flat = np.nonzero(self.res.mask.reshape(-1))[0]
         poses = self.res.grid.poses(0, self.res.grid.size)[flat]
         q = module.ik(poses, 0, False)[:, :3]
@@ -86,12 +84,19 @@ class _Search:
         self.q_lo[flat], self.q_hi[flat] = q.min(axis=1), q.max(axis=1)
         self.q_lo = self.q_lo.reshape(self.res.grid.shape)
         self.q_hi = self.q_hi.reshape(self.res.grid.shape)
+        # home_component reads the signs on a candidate's mask only (the stroke search
+        # asks for no bounding loci), and every candidate's mask lies in this one
+        self.reach = self.res.mask & (self.q_lo >= BOUNDS[0]) & (self.q_hi <= BOUNDS[1])
+        signs = polynomial_signs(self.res, where=self.reach)
         self.signs = signs
         # the signs around home, read for every candidate: built once
         self.sides = SignSides(signs, nearest_index(self.res, HOME))
 
     def ranges(self, q_min: float, q_max: float) -> tuple[dict[str, float], float] | None:
-        mask = self.res.mask & (self.q_lo >= q_min) & (self.q_hi <= q_max)
+        if not BOUNDS[0] <= q_min <= q_max <= BOUNDS[1]:
+            raise ValueError(f"planar_tripod stroke search: the candidate ({q_min}, {q_max}) "
+                             f"mm lies outside the searched bounds {BOUNDS}")
+        mask = self.reach & (self.q_lo >= q_min) & (self.q_hi <= q_max)
         cand = replace(self.res, mask=mask, count=int(np.count_nonzero(mask)))
         try:
             comp = home_component(cand, self.signs, HOME, self.sides).result
