@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 58a19225de8d6c6415981866ebaa7f9af78f5571868dfcfea0e577cdf1763fbc
+ * Derivation hash: 4840e3814a93dad3ad79ec7a32eb0dacb8388e2b2249b5d8a3563731c4d6b96f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "58a19225de8d6c6415981866ebaa7f9af78f5571868dfcfea0e577cdf1763fbc";
+const char bonered_derivation_hash[] = "4840e3814a93dad3ad79ec7a32eb0dacb8388e2b2249b5d8a3563731c4d6b96f";
 int bonered_abi(void) { return 3; }
 #endif
 

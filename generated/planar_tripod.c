@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: bb418ae3faf8a241ab1b0b50139c614ef11d60d3d68695f9c423b01b2aedb6c5
+ * Derivation hash: 4289caa02c96f344ffe75b0353d02b71f71495910277da877d2ce205758478c6
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "bb418ae3faf8a241ab1b0b50139c614ef11d60d3d68695f9c423b01b2aedb6c5";
+const char bonered_derivation_hash[] = "4289caa02c96f344ffe75b0353d02b71f71495910277da877d2ce205758478c6";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9b4f423c4762764e2294f9ef78be4b1840a21dd873c4bd96a2574559fe0a7977
+ * Derivation hash: 66643f9a85185d8a26a4c1a81c41a366e6a62ee89db63ca1984871281f2c9cbc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9b4f423c4762764e2294f9ef78be4b1840a21dd873c4bd96a2574559fe0a7977";
+const char bonered_derivation_hash[] = "66643f9a85185d8a26a4c1a81c41a366e6a62ee89db63ca1984871281f2c9cbc";
 int bonered_abi(void) { return 3; }
 #endif
 

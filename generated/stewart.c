@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2ca6978caddb6b2eae927d8a89190c9d0e93f6c9b467635c33fa44d8c8b4f862
+ * Derivation hash: caa5dadeb85d06824d361ddf4149e2916d40e972ec699aceafd00c442164cfec
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2ca6978caddb6b2eae927d8a89190c9d0e93f6c9b467635c33fa44d8c8b4f862";
+const char bonered_derivation_hash[] = "caa5dadeb85d06824d361ddf4149e2916d40e972ec699aceafd00c442164cfec";
 int bonered_abi(void) { return 3; }
 #endif
 

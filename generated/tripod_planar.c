@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 37b1abbbf9e40ebd80a46e25175ff8c747caf26a58ee8249e486264aa422773b
+ * Derivation hash: d6bb36e0eb66bc5f631edbe51d41d45d96fa95f81c42c6903f3f63d5ea4a3fe3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "37b1abbbf9e40ebd80a46e25175ff8c747caf26a58ee8249e486264aa422773b";
+const char bonered_derivation_hash[] = "d6bb36e0eb66bc5f631edbe51d41d45d96fa95f81c42c6903f3f63d5ea4a3fe3";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8e698d0a5a20ea576515b44a656b1997d7809d1f9c2d8f0b310e77597b08be74
+ * Derivation hash: db38ec60acd441e92d6a07081b8aace12c7c770cc94de1d2da5d6c0f39b0be5f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8e698d0a5a20ea576515b44a656b1997d7809d1f9c2d8f0b310e77597b08be74";
+const char bonered_derivation_hash[] = "db38ec60acd441e92d6a07081b8aace12c7c770cc94de1d2da5d6c0f39b0be5f";
 int bonered_abi(void) { return 3; }
 #endif
 

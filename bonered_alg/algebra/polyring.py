@@ -275,11 +275,12 @@ def terms_of(expr: sp.Expr, gens: Sequence[sp.Symbol]) -> dict[tuple[int, ...], 
             return None
         e = [0] * len(gens)
         for f in sp.Mul.make_args(rest):
-            if f == 1:
+            if f is sp.S.One:  # rest of a bare number (as_coeff_Mul took every number out)
                 continue
             base, k = f.as_base_exp()
             i = index.get(base)
-            if i is None or not (k.is_Integer and k > 0):
+            # k.p: the Python int (sympy's ``k > 0`` sympifies the 0 first)
+            if i is None or not (k.is_Integer and k.p > 0):
                 return None
             e[i] += int(k)
         key = tuple(e)
@@ -386,7 +387,8 @@ def factor_list_as_sympy(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, in
 def _symbol_power(f: sp.Expr) -> tuple[sp.Expr, sp.Expr] | None:
     """``(symbol, k)`` for a factor ``symbol**k`` (``k`` a positive integer), else None."""
     base, k = (f.base, f.exp) if f.is_Pow else (f, sp.S.One)
-    return (base, k) if base.is_Symbol and k.is_Integer and k > 0 else None
+    # k.p: the Python int (sympy's ``k > 0`` sympifies the 0 first, a tenth of the call)
+    return (base, k) if base.is_Symbol and k.is_Integer and k.p > 0 else None
 
 
 def monomial_in(term: sp.Expr, v: sp.Symbol) -> tuple[sp.Expr, int] | None:

@@ -23,12 +23,14 @@ class _PolynomialProblem:
         raise NotImplementedError
 
     def equation_terms(self) -> list[pt.PolyTerms]:
-        """Equations as exact term lists over ``gens`` (rational coefficients only)."""
-        out = []
-        for eq in self.equations:
-            poly = sp.Poly(sp.expand(eq), *self.gens, domain=sp.QQ)
-            out.append(tuple((e, pt.parse_rational(str(c))) for e, c in poly.terms()))
-        return out
+        """Equations as exact term lists over ``gens`` (rational coefficients only), each in
+        ``Poly.terms()``'s order (lex, descending); computed once per problem (the cache key,
+        the engine's script and its stages each ask)."""
+        memo = self.__dict__.get("_equation_terms")
+        if memo is None or memo[0] is not self.equations:
+            memo = (self.equations, tuple(_terms(eq, self.gens) for eq in self.equations))
+            self.__dict__["_equation_terms"] = memo
+        return list(memo[1])
 
     def canonical_text(self) -> str:
         names = ",".join(map(str, self.gens))
@@ -65,6 +67,17 @@ class ParametricProblem(_PolynomialProblem):
     @property
     def split(self) -> int:
         return len(self.unknowns)
+
+
+def _terms(eq: sp.Expr, gens: tuple[sp.Symbol, ...]) -> pt.PolyTerms:
+    """``eq`` as exact terms over ``gens`` in lex order, descending: read off the monomials
+    of the expanded sum (:func:`..algebra.polyring.terms_of`, several times faster), through
+    ``sympy.Poly`` over QQ where that does not apply (the same terms)."""
+    found = pr.terms_of(pr.expanded(eq), gens)
+    if found is not None:
+        return tuple(sorted(found.items(), reverse=True))
+    poly = sp.Poly(sp.expand(eq), *gens, domain=sp.QQ)
+    return tuple((e, pt.parse_rational(str(c))) for e, c in poly.terms())
 
 
 def as_expressions(basis, gens) -> list[sp.Expr]:

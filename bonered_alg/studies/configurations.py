@@ -43,41 +43,73 @@ def _line(home: np.ndarray, axis: int, units) -> np.ndarray:
     return poses
 
 
-def vanishing_configuration(gen, name: str, home: np.ndarray):
-    """``(pose, axis, |p| relative, note)`` where singularity polynomial ``name`` vanishes
-    (a sign change bisected), nearest home along the pose axes; else the nearest sign change
-    where the IK fails before a zero (with a note saying so); else None."""
-    def value(p):
-        return gen.singularities(p, gen.ik(p, limits=False))[name]
+def vanishing_configurations(gen, names, home: np.ndarray) -> dict:
+    """Per singularity polynomial of ``names``: ``(pose, axis, |p| relative, note)`` where
+    it vanishes (a sign change bisected), nearest home along the pose axes; else the
+    nearest sign change where the IK fails before a zero (with a note saying so); else
+    None.  Every sign change of every polynomial is bisected at once, one IK and one
+    evaluation of the polynomials per halving for all of them (each bracket's numbers are
+    those of bisecting it alone: every pose is its own)."""
+    def values(p):
+        return gen.singularities(p, gen.ik(p, limits=False))
 
-    best = jump = None
-    for axis in range(len(home)):
-        poses = _line(home, axis, gen.POSE_UNITS)
-        v = value(poses)
-        s = np.sign(v)
-        ok = np.isfinite(v[:-1]) & np.isfinite(v[1:]) & (s[:-1] * s[1:] < 0)
-        for i in np.flatnonzero(ok):
-            a, b, va = poses[i].copy(), poses[i + 1].copy(), v[i]
-            for _ in range(HALVINGS):
-                mid = (a + b) / 2
-                vm = value(mid)
-                if not np.isfinite(vm):  # the IK fails there (e.g. an input singularity)
-                    break
-                a, b, va = (mid, b, vm) if np.sign(vm) == np.sign(va) else (a, mid, va)
-            pose = a  # the last point of the bracket where the IK holds
-            dist = abs(pose[axis] - home[axis]) / (SPAN_RAD if gen.POSE_UNITS[axis] == "rad"
-                                                   else SPAN_MM)
-            scale = float(np.nanmax(np.abs(v)))
-            rel = float(abs(va) / scale) if scale > 0 else float("nan")
-            if not rel <= MAX_RELATIVE:  # a pole, or the IK fails before the zero
-                if jump is None or dist < jump[0] - TIE:
-                    jump = (dist, pose, gen.POSE[axis], rel, "sign change where the IK "
-                            "fails (not bisected to a zero)")
-                continue
-            if best is None or dist < best[0] - TIE:
-                best = (dist, pose, gen.POSE[axis], rel, "")
-    found = best or jump
-    return None if found is None else found[1:]
+    lines = [_line(home, axis, gen.POSE_UNITS) for axis in range(len(home))]
+    on_lines = values(np.concatenate(lines))
+    brackets = []  # (name, axis, largest |p| on the line), in the order they are read
+    a_rows, b_rows, va = [], [], []
+    for name in names:
+        for axis, poses in enumerate(lines):
+            v = on_lines[name][axis * SAMPLES:(axis + 1) * SAMPLES]
+            s = np.sign(v)
+            ok = np.isfinite(v[:-1]) & np.isfinite(v[1:]) & (s[:-1] * s[1:] < 0)
+            for i in np.flatnonzero(ok):
+                brackets.append((name, axis, float(np.nanmax(np.abs(v)))))
+                a_rows.append(poses[i])
+                b_rows.append(poses[i + 1])
+                va.append(v[i])
+    if brackets:
+        a, b, va = np.array(a_rows), np.array(b_rows), np.array(va, dtype=float)
+        rows = {name: np.array([k for k, br in enumerate(brackets) if br[0] == name])
+                for name in names}
+        active = np.ones(len(brackets), dtype=bool)
+        for _ in range(HALVINGS):
+            if not active.any():
+                break
+            at = np.flatnonzero(active)
+            mid = (a[at] + b[at]) / 2
+            got = values(mid)
+            vm = np.empty(len(at))
+            for name, k in rows.items():
+                if k.size:
+                    pick = np.isin(at, k)
+                    vm[pick] = got[name][pick]
+            # the IK fails there (e.g. an input singularity): that bracket stops
+            stop = ~np.isfinite(vm)
+            active[at[stop]] = False
+            go, mid, vm = at[~stop], mid[~stop], vm[~stop]
+            same = np.sign(vm) == np.sign(va[go])
+            a[go[same]], va[go[same]] = mid[same], vm[same]
+            b[go[~same]] = mid[~same]
+    found: dict = {}
+    for k, (name, axis, scale) in enumerate(brackets):
+        best, jump = found.get(name, (None, None))
+        pose = a[k]  # the last point of the bracket where the IK holds
+        dist = abs(pose[axis] - home[axis]) / (SPAN_RAD if gen.POSE_UNITS[axis] == "rad"
+                                               else SPAN_MM)
+        rel = float(abs(va[k]) / scale) if scale > 0 else float("nan")
+        if not rel <= MAX_RELATIVE:  # a pole, or the IK fails before the zero
+            if jump is None or dist < jump[0] - TIE:
+                jump = (dist, pose, gen.POSE[axis], rel, "sign change where the IK "
+                        "fails (not bisected to a zero)")
+        elif best is None or dist < best[0] - TIE:
+            best = (dist, pose, gen.POSE[axis], rel, "")
+        found[name] = (best, jump)
+    out = {}
+    for name in names:
+        best, jump = found.get(name, (None, None))
+        pick = best or jump
+        out[name] = None if pick is None else pick[1:]
+    return out
 
 
 def _trailing(d, leg, pose) -> np.ndarray:
@@ -162,8 +194,7 @@ def _pose_text(gen, pose) -> str:
 def run(d, gen) -> Study:
     m = d.mechanism
     home = np.asarray(m.home, dtype=float)
-    rows = [(name, vanishing_configuration(gen, name, home))
-            for name in gen.SINGULARITY_MEANING]
+    rows = list(vanishing_configurations(gen, list(gen.SINGULARITY_MEANING), home).items())
     zeros = [(name, f[0]) for name, f in rows if f is not None and not f[3]]
     # drawn: a forward (type II) singularity where one was found, else the first zero
     typeii = [z for z in zeros if z[0].startswith(("det_forward", "det_Jo"))]

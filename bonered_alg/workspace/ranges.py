@@ -60,30 +60,31 @@ def coordinate_range(mechanism: str, reference: Sequence[float], name: str,
     code0 = _inside(mechanism, reference, k, np.array([ref]), criteria, params)[0]
     if code0 != IN_WORKSPACE:
         return CoordinateRange(name, np.nan, np.nan, step, tol, int(code0), int(code0))
-    ends, stops = [], []
-    for direction, limit in ((-1.0, bound[0]), (1.0, bound[1])):
+    ends, stops, brackets = [None, None], [None, None], []
+    for side, (direction, limit) in enumerate(((-1.0, bound[0]), (1.0, bound[1]))):
         n = int(np.ceil(abs(limit - ref) / step))
         values = ref + direction * step * np.arange(1, n + 1)
         values = np.clip(values, min(bound), max(bound))
         codes = _inside(mechanism, reference, k, values, criteria, params)
         outside = np.nonzero(codes != IN_WORKSPACE)[0]
         if outside.size == 0:
-            ends.append(limit)
-            stops.append(None)
+            ends[side] = limit
             continue
         i = outside[0]
-        a = ref if i == 0 else values[i - 1]  # inside
-        b = values[i]  # outside
-        stop = int(codes[i])
-        while abs(b - a) > tol:
-            mid = 0.5 * (a + b)
-            c = _inside(mechanism, reference, k, np.array([mid]), criteria, params)[0]
+        # inside, outside, the status there
+        brackets.append([side, ref if i == 0 else values[i - 1], values[i], int(codes[i])])
+    # both ends bisected together, one classification per halving for the two (each end's
+    # numbers are those of bisecting it alone: every pose is its own)
+    while live := [br for br in brackets if abs(br[2] - br[1]) > tol]:
+        mids = np.array([0.5 * (br[1] + br[2]) for br in live])
+        codes = _inside(mechanism, reference, k, mids, criteria, params)
+        for br, mid, c in zip(live, mids, codes):
             if c == IN_WORKSPACE:
-                a = mid
+                br[1] = mid
             else:
-                b, stop = mid, int(c)
-        ends.append(a)
-        stops.append(stop)
+                br[2], br[3] = mid, int(c)
+    for side, a, _, stop in brackets:
+        ends[side], stops[side] = a, stop
     return CoordinateRange(name, ends[0], ends[1], step, tol, stops[0], stops[1])
 
 
