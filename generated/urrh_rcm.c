@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: db38ec60acd441e92d6a07081b8aace12c7c770cc94de1d2da5d6c0f39b0be5f
+ * Derivation hash: 2565a164b8096aca74435761f70136e440fc71a7898dabcf8ca15f387bea39f1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "db38ec60acd441e92d6a07081b8aace12c7c770cc94de1d2da5d6c0f39b0be5f";
+const char bonered_derivation_hash[] = "2565a164b8096aca74435761f70136e440fc71a7898dabcf8ca15f387bea39f1";
 int bonered_abi(void) { return 3; }
 #endif
 

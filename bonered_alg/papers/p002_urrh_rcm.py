@@ -16,6 +16,7 @@ import numpy as np
 import sympy as sp
 
 from ..algebra import convention as cv
+from ..algebra import polyring as pr
 from ..algebra import study_numeric as sn
 from ..algebra import study_symbolic as ss
 from ..mechanisms.urrh_rcm import a1, d1, d2, p, theta2, w1
@@ -102,7 +103,7 @@ def _verify_mobility(d, gen, poses, qs) -> Verdict:
     space)."""
     gens = [g for r in d.legs for g in r.generators]
     unknowns = [s for s in d.mechanism.closures[0].pose] + list(d.mechanism.joints)
-    jac = sp.Matrix(gens).jacobian(unknowns)
+    jac = pr.jacobian(gens, unknowns)  # sympy's Jacobian, on the monomials
     par = {s.symbol: sp.sympify(s.value) for s in d.mechanism.parameters}
     # all numbers put in at once (subs, one after another, took 3 s); only ranks are read
     f = sp.lambdify(unknowns, jac.xreplace(par), "numpy")
