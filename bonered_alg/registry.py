@@ -20,13 +20,13 @@ MECHANISMS = {
 REGISTRY = tuple(MECHANISMS)
 
 # seconds a cold derivation of each took on a 2-core machine (bench derive, 2026-12-06
-# 20:31 UTC, one process, a slow hour of the host):
+# 22:34 UTC, one process):
 # only the order in which ``derive_all`` hands mechanisms to its worker processes reads
 # them (the longest first, so that two workers finish together); a local record of the
 # last run's times (``pipeline.runner``) takes their place once there is one
 EXPECTED_SECONDS = {
-    "urrh_rcm": 46, "tripod_planar": 31, "stewart": 26, "planar_tripod": 15,
-    "pro_hep_lct": 11, "lamina_milling": 6,
+    "tripod_planar": 25, "urrh_rcm": 21, "stewart": 19, "planar_tripod": 14,
+    "pro_hep_lct": 9, "lamina_milling": 4,
 }
 
 
