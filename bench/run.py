@@ -106,9 +106,11 @@ def elimination_benchmarks(sympy_budget):
 
 def derive_benchmarks():
     """A cold derivation (no elimination cache) of every registered mechanism, one after
-    another in this process: the seconds of each stage as the runner reports them
-    (``derive --force`` runs the same derivations on every core, then the comparison
-    study), the derivation's finer timings, and ``derive`` when everything is current."""
+    another in this process: the seconds of each stage as the runner reports them and of
+    rendering its outputs (``derive --force`` runs the same derivations on every core and
+    writes them, then the comparison study), the derivation's finer timings, and
+    ``derive`` when everything is current."""
+    from bonered_alg.pipeline import outputs
     from bonered_alg.registry import REGISTRY
 
     per_mechanism = {}
@@ -122,6 +124,11 @@ def derive_benchmarks():
 
         t0 = time.perf_counter()
         record = derive(name, use_cache=False, progress=progress)
+        # the outputs' text (report, records, modules) as derive --force renders them
+        # before writing: a stage of its own, outside the runner's progress lines
+        t1 = time.perf_counter()
+        outputs.files(record)
+        stage_s["outputs rendered"] = round(time.perf_counter() - t1, 1)
         per_mechanism[name] = {"total_s": time.perf_counter() - t0, "stages_s": stage_s,
                                "detail_s": {k: round(v, 3) for k, v in
                                             record.derivation.timings.items()}}

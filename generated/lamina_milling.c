@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4840e3814a93dad3ad79ec7a32eb0dacb8388e2b2249b5d8a3563731c4d6b96f
+ * Derivation hash: d305df8aa16fa0e001484efff913a7de457b6c4f78803a3b5b7abcf7f8e1342d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "4840e3814a93dad3ad79ec7a32eb0dacb8388e2b2249b5d8a3563731c4d6b96f";
+const char bonered_derivation_hash[] = "d305df8aa16fa0e001484efff913a7de457b6c4f78803a3b5b7abcf7f8e1342d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4289caa02c96f344ffe75b0353d02b71f71495910277da877d2ce205758478c6
+ * Derivation hash: d4746034260d0fac488b901ca149c864357c85ef041c4b97ed2e37dd946454f1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "4289caa02c96f344ffe75b0353d02b71f71495910277da877d2ce205758478c6";
+const char bonered_derivation_hash[] = "d4746034260d0fac488b901ca149c864357c85ef041c4b97ed2e37dd946454f1";
 int bonered_abi(void) { return 3; }
 #endif
 

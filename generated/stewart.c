@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: caa5dadeb85d06824d361ddf4149e2916d40e972ec699aceafd00c442164cfec
+ * Derivation hash: a0a53b821a52ddbd95eaab447d0b0723b1ffca3e02c69036242a70aa48857def
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "caa5dadeb85d06824d361ddf4149e2916d40e972ec699aceafd00c442164cfec";
+const char bonered_derivation_hash[] = "a0a53b821a52ddbd95eaab447d0b0723b1ffca3e02c69036242a70aa48857def";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d6bb36e0eb66bc5f631edbe51d41d45d96fa95f81c42c6903f3f63d5ea4a3fe3
+ * Derivation hash: 6595a90a3f34309bde1c3960c2d8110b26aff9d8567f229687b43ac26c91435c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d6bb36e0eb66bc5f631edbe51d41d45d96fa95f81c42c6903f3f63d5ea4a3fe3";
+const char bonered_derivation_hash[] = "6595a90a3f34309bde1c3960c2d8110b26aff9d8567f229687b43ac26c91435c";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -126,6 +126,37 @@ def test_definite_leading_coefficients():
     assert not _definite(x**2 + y**2)  # vanishes at 0
     assert not _definite(1 - x**2)
     assert not _definite(1 + x * y)
+    # beyond degree 2 (decided on the terms): even monomials with positive coefficients
+    assert _definite(1 + x**4 + 3 * x**2 * y**2)
+    assert not _definite(1 + x**4 - x**2)  # positive, but not visibly so
+    assert not _definite(x**4 + y**4)  # no constant: vanishes at 0
+    assert not _definite(2 + x**4 * y**2 + x**3)  # an odd power
+
+
+def test_definite_on_terms_agrees_with_poly():
+    """The terms route of _definite against the Poly reading it replaced, on random
+    polynomials of degree up to 6 with a constant term and mostly even powers."""
+    import random
+
+    x, y, z = sp.symbols("x y z", real=True)
+    rng = random.Random(7)
+
+    def reference(a):
+        poly = sp.Poly(sp.expand(a), *sorted(a.free_symbols, key=str))
+        terms = poly.terms()
+        has_const = any(all(e == 0 for e in m) for m, _ in terms)
+        return has_const and all(c > 0 and all(e % 2 == 0 for e in m) for m, c in terms)
+
+    seen = set()
+    for _ in range(200):
+        a = sp.Integer(rng.choice([0, 1, 5]))
+        for _ in range(rng.randint(1, 4)):
+            ex = [rng.choice([0, 2, 2, 4, 1, 3]) for _ in range(3)]
+            a += rng.choice([1, 2, -1, sp.Rational(1, 3)]) * x**ex[0] * y**ex[1] * z**ex[2]
+        if a.free_symbols and sp.Poly(a, *sorted(a.free_symbols, key=str)).total_degree() > 2:
+            assert _definite(a) == reference(a), a
+            seen.add(_definite(a))
+    assert seen == {True, False}
 
 
 def test_the_planner_demotes_a_generator_that_vanishes_at_home():

@@ -170,7 +170,15 @@ def _definite(a: sp.Expr) -> bool:
     even monomials with positive coefficients (e.g. ``1 + x**2``), or a positive constant
     plus a positive semidefinite quadratic form (e.g. ``1 + (x + sqrt(3) y)**2``).
     Quadratic steps whose leading coefficient cannot vanish are preferred: they never
-    degenerate inside the workspace."""
+    degenerate inside the workspace.  A sum of monomials with rational coefficients that is
+    not a quadratic form is decided on its terms (the same test, without building a Poly
+    of a long singularity factor)."""
+    if a.free_symbols:
+        gens = sorted(a.free_symbols, key=str)
+        terms = pr.terms_of(pr.expanded(a), gens)
+        if terms and max(map(sum, terms)) != 2:
+            return ((0,) * len(gens) in terms
+                    and all(c > 0 and all(e % 2 == 0 for e in m) for m, c in terms.items()))
     poly = sp.Poly(sp.expand(a), *sorted(a.free_symbols, key=str)) if a.free_symbols else None
     if poly is None:
         return bool(a.is_positive)

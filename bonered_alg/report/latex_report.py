@@ -156,7 +156,7 @@ def _section_chains(d) -> list[str]:
         names = ["x_0", "x_1", "x_2", "x_3", "y_0", "y_1", "y_2", "y_3"]
         for nm, c in zip(names, r.product):
             if c != 0:
-                out.append(broken_math(nm, sp.expand(c)))
+                out.append(broken_math(nm, pr.expanded(c)))  # sp.expand's result
         zeros = [nm for nm, c in zip(names, r.product) if c == 0]
         if zeros:
             out.append("and $" + " = ".join(zeros) + " = 0$.")
@@ -561,7 +561,8 @@ def _classified_factors(d, s):
     fixed = set(m.geometric) | set(values)
     loci, never = [], []
     for f, mult in s.factors:
-        g = sp.expand(f.subs(values))
+        # a factor without the constants is expanded as it is (subs would copy it)
+        g = sp.expand(f.subs(values)) if f.free_symbols & set(values) else pr.expanded(f)
         if g.is_number and g != 0:
             never.append((f, mult, "a non-zero constant"))
         elif _definite(g):
