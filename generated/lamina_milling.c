@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d305df8aa16fa0e001484efff913a7de457b6c4f78803a3b5b7abcf7f8e1342d
+ * Derivation hash: 99d6afeb6a45c1faf4af8277572a4dc658cfba9fefbc2033f042ee6d557c9c49
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d305df8aa16fa0e001484efff913a7de457b6c4f78803a3b5b7abcf7f8e1342d";
+const char bonered_derivation_hash[] = "99d6afeb6a45c1faf4af8277572a4dc658cfba9fefbc2033f042ee6d557c9c49";
 int bonered_abi(void) { return 3; }
 #endif
 

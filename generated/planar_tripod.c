@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d4746034260d0fac488b901ca149c864357c85ef041c4b97ed2e37dd946454f1
+ * Derivation hash: 2b9869065a63f299c2cd5c30c1a9e88b72c4d21e3733b0752cd8b57e55e8961b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d4746034260d0fac488b901ca149c864357c85ef041c4b97ed2e37dd946454f1";
+const char bonered_derivation_hash[] = "2b9869065a63f299c2cd5c30c1a9e88b72c4d21e3733b0752cd8b57e55e8961b";
 int bonered_abi(void) { return 3; }
 #endif
 

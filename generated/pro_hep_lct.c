@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5ff410ba48bf2c15182bc9d59368c48c2f964e251428e2024d293e32d74fb654
+ * Derivation hash: d7748762212902fff304150ac28dc6698b106e755da8a41cfc1d344171dbfba8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5ff410ba48bf2c15182bc9d59368c48c2f964e251428e2024d293e32d74fb654";
+const char bonered_derivation_hash[] = "d7748762212902fff304150ac28dc6698b106e755da8a41cfc1d344171dbfba8";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a0a53b821a52ddbd95eaab447d0b0723b1ffca3e02c69036242a70aa48857def
+ * Derivation hash: 9ca298bba324b0183e5ea9cbc1c7672e45c89481e038a4ecc1611a826ac9731b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a0a53b821a52ddbd95eaab447d0b0723b1ffca3e02c69036242a70aa48857def";
+const char bonered_derivation_hash[] = "9ca298bba324b0183e5ea9cbc1c7672e45c89481e038a4ecc1611a826ac9731b";
 int bonered_abi(void) { return 3; }
 #endif
 

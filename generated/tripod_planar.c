@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6595a90a3f34309bde1c3960c2d8110b26aff9d8567f229687b43ac26c91435c
+ * Derivation hash: 6e90a5fd677c5aa3b30f997fa6efd13c0d5a4c3239c0d20d43f358de44bb21b5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6595a90a3f34309bde1c3960c2d8110b26aff9d8567f229687b43ac26c91435c";
+const char bonered_derivation_hash[] = "6e90a5fd677c5aa3b30f997fa6efd13c0d5a4c3239c0d20d43f358de44bb21b5";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8cacc06fbad3c3d8645a2d3d7048669c8f2e291e2454fc039d98c626034f80f3
+ * Derivation hash: b93e9d0bf25858008cd63f879c497d5189eb5862758c5a03466cc876633897b8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8cacc06fbad3c3d8645a2d3d7048669c8f2e291e2454fc039d98c626034f80f3";
+const char bonered_derivation_hash[] = "b93e9d0bf25858008cd63f879c497d5189eb5862758c5a03466cc876633897b8";
 int bonered_abi(void) { return 3; }
 #endif
 

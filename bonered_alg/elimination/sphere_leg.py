@@ -29,6 +29,7 @@ is not a distance leg, and the pipeline eliminates it instead.
 
 from __future__ import annotations
 
+import functools
 import random
 from dataclasses import dataclass
 
@@ -135,11 +136,17 @@ def _sphere_ring(d: DistanceLeg, platform: tuple, minimal_polynomials: dict | No
                  ) -> tuple[pr.PolyElement, tuple[sp.Symbol, ...]]:
     """The sphere condition of :func:`_cleared_sphere` reduced by the algebraic constants'
     minimal polynomials and made primitive in the platform's coordinates and the stroke.
-    Returns it and those coordinates."""
-    minpolys = minimal_polynomials or {}
-    expr, gens, _ = _cleared_sphere(d, platform, minpolys)
+    Returns it and those coordinates; kept for the last few arguments (certify and the
+    leg's ideal ask for the same leg's, each about 0.2 s on a Stewart leg; the polynomial
+    is not modified by its readers)."""
+    return _sphere_ring_of(d, tuple(platform), tuple((minimal_polynomials or {}).items()))
+
+
+@functools.lru_cache(maxsize=16)
+def _sphere_ring_of(d: DistanceLeg, platform: tuple, minpolys: tuple):
+    expr, gens, _ = _cleared_sphere(d, platform, dict(minpolys))
     ring = expr.ring
-    expr = pr.reduce_modulo(expr, [pr.polynomial(ring, mp) for mp in minpolys.values()])
+    expr = pr.reduce_modulo(expr, [pr.polynomial(ring, mp) for _, mp in minpolys])
     return pr.primitive_in(expr, gens), gens
 
 
