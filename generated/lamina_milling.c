@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 99d6afeb6a45c1faf4af8277572a4dc658cfba9fefbc2033f042ee6d557c9c49
+ * Derivation hash: 212e81143646b59dcd838097a2d4a177191156fa49293dcfa875e153c1fe31eb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "99d6afeb6a45c1faf4af8277572a4dc658cfba9fefbc2033f042ee6d557c9c49";
+const char bonered_derivation_hash[] = "212e81143646b59dcd838097a2d4a177191156fa49293dcfa875e153c1fe31eb";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2b9869065a63f299c2cd5c30c1a9e88b72c4d21e3733b0752cd8b57e55e8961b
+ * Derivation hash: afaa85b68eef1e0fd9d95ffb935527e4adc83749b63611e51acd50385fddbb9d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2b9869065a63f299c2cd5c30c1a9e88b72c4d21e3733b0752cd8b57e55e8961b";
+const char bonered_derivation_hash[] = "afaa85b68eef1e0fd9d95ffb935527e4adc83749b63611e51acd50385fddbb9d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d7748762212902fff304150ac28dc6698b106e755da8a41cfc1d344171dbfba8
+ * Derivation hash: f9f8b52222bcadb2098d83867179c424e81d01aea3665279e3ebc05d8d9c2d9f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d7748762212902fff304150ac28dc6698b106e755da8a41cfc1d344171dbfba8";
+const char bonered_derivation_hash[] = "f9f8b52222bcadb2098d83867179c424e81d01aea3665279e3ebc05d8d9c2d9f";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9ca298bba324b0183e5ea9cbc1c7672e45c89481e038a4ecc1611a826ac9731b
+ * Derivation hash: 2c524cc4be79a4d1d4a107d9b785718af44ed39042b7fadd8e0021968cfd00fe
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9ca298bba324b0183e5ea9cbc1c7672e45c89481e038a4ecc1611a826ac9731b";
+const char bonered_derivation_hash[] = "2c524cc4be79a4d1d4a107d9b785718af44ed39042b7fadd8e0021968cfd00fe";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6e90a5fd677c5aa3b30f997fa6efd13c0d5a4c3239c0d20d43f358de44bb21b5
+ * Derivation hash: d3a4d52977deb3686ab11bb9661f0a9e5ea026dca14e61f4c57a9f552b4ae1ae
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6e90a5fd677c5aa3b30f997fa6efd13c0d5a4c3239c0d20d43f358de44bb21b5";
+const char bonered_derivation_hash[] = "d3a4d52977deb3686ab11bb9661f0a9e5ea026dca14e61f4c57a9f552b4ae1ae";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b93e9d0bf25858008cd63f879c497d5189eb5862758c5a03466cc876633897b8
+ * Derivation hash: 77e38f112547a0faa8cac3819b5fd336a079f0756c2ad54206749ae4c674f2fd
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b93e9d0bf25858008cd63f879c497d5189eb5862758c5a03466cc876633897b8";
+const char bonered_derivation_hash[] = "77e38f112547a0faa8cac3819b5fd336a079f0756c2ad54206749ae4c674f2fd";
 int bonered_abi(void) { return 3; }
 #endif
 

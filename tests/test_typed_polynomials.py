@@ -308,3 +308,38 @@ def test_jacobian_is_sympys_jacobian(seed):
     got = pr.jacobian(exprs, variables)
     assert got.shape == want.shape
     assert [sp.srepr(x) for x in got] == [sp.srepr(x) for x in want]
+
+
+def test_count_ops_is_sympys():
+    """polyring.count_ops against sympy.count_ops on random expressions (sums, products,
+    powers, functions, negations, rational and float numbers) and on polynomials."""
+    xs = sp.symbols("a b c d")
+    rng = random.Random(3)
+
+    def rnd(depth=0):
+        r = rng.random()
+        if depth > 3 or r < 0.25:
+            return rng.choice([*xs, sp.Integer(rng.randint(-3, 3)),
+                               sp.Rational(rng.randint(-5, 5), rng.randint(1, 4)),
+                               sp.Float(rng.choice([-1.0, 1.0, 2.5, -0.5]))])
+        k = rng.random()
+        if k < 0.3:
+            return sp.Add(*[rnd(depth + 1) for _ in range(rng.randint(2, 4))])
+        if k < 0.6:
+            return sp.Mul(*[rnd(depth + 1) for _ in range(rng.randint(2, 3))])
+        if k < 0.75:
+            return sp.Pow(rnd(depth + 1), rng.choice([2, 3, -1, -2, sp.Rational(1, 2),
+                                                      sp.Rational(-1, 2)]))
+        if k < 0.85:
+            return rng.choice([sp.sin, sp.atan, sp.exp, sp.sqrt, sp.Abs])(rnd(depth + 1))
+        return -rnd(depth + 1)
+
+    for _ in range(1500):
+        e = rnd()
+        assert pr.count_ops(e) == int(sp.count_ops(e)), e
+    for _ in range(100):
+        e = sp.Add(*[sp.Rational(rng.randint(-9, 9), rng.choice([1, 1, 2, 3]))
+                     * sp.Mul(*[x ** rng.randint(0, 3) for x in xs])
+                     for _ in range(rng.randint(1, 30))])
+        assert pr.count_ops(e) == int(sp.count_ops(e)), e
+    assert pr.count_ops(sp.Eq(xs[0], xs[1] + 1)) == int(sp.count_ops(sp.Eq(xs[0], xs[1] + 1)))

@@ -435,6 +435,116 @@ def coefficients(g: sp.Expr, v: sp.Symbol) -> dict[int, sp.Expr]:
     return coeff
 
 
+def _simple_mul(a: sp.Expr):
+    """``(coefficient, factors, powers)`` of a product of a leading number and factors that
+    are symbols or symbols to positive integer powers; None for any other product."""
+    args = a.args
+    coeff = args[0] if args[0].is_Number else sp.S.One
+    factors = args[1:] if args[0].is_Number else args
+    powers = 0
+    for f in factors:
+        if f.is_Pow:
+            if not (f.base.is_Symbol and f.exp.is_Integer and f.exp.p > 0):
+                return None
+            powers += 1
+        elif not f.is_Symbol:
+            return None
+    return coeff, len(factors), powers
+
+
+def _simple_mul_ops(coeff: sp.Expr, r: int, powers: int) -> int:
+    """``count_ops`` of ``coeff * factors`` (``coeff`` a positive number, ``r`` factors of
+    which ``powers`` are powers): what sympy's ``fraction`` splits off and the products it
+    leaves, counted without building them."""
+    if coeff.is_Rational and coeff.q != 1:  # DIV, then the numerator p * factors
+        k = r + (coeff.p != 1)
+        return 1 + (k - 1 if k >= 2 else 0) + powers
+    k = r + (coeff is not sp.S.One)
+    return (k - 1 if k >= 2 else 0) + powers
+
+
+def count_ops(expr) -> int:
+    """``sympy.count_ops(expr)`` (visual=False), the same number: sympy's walk, counted
+    in integers instead of symbolic operation names summed at the end, and a product of a
+    number and symbol powers counted without rebuilding it through ``fraction`` and
+    negation (the greater part of sympy's time on the kernels and long generators).
+    Anything but a non-relational expression goes to sympy."""
+    from sympy.core.function import _coeff_isneg
+    from sympy.core.operations import LatticeOp
+    from sympy.simplify.radsimp import fraction
+
+    expr = sp.sympify(expr)
+    if not isinstance(expr, sp.Expr) or expr.is_Relational:
+        return int(sp.count_ops(expr))
+    from sympy import Derivative, Integral, Sum
+
+    n = 0
+    todo: list = [(expr, False)]  # (expression, negate it first)
+    while todo:
+        a, negate = todo.pop()
+        if negate:
+            if a.is_Mul and (simple := _simple_mul(a)) is not None:
+                coeff, r, powers = simple
+                n += _simple_mul_ops(-coeff, r, powers)
+                continue
+            a = -a
+        if a.is_Rational:
+            if a is not sp.S.One:
+                n += (a.p < 0) + (a.q != 1)
+                continue
+        elif a.is_Mul or a.is_MatMul:
+            if a.is_Mul and (simple := _simple_mul(a)) is not None:
+                coeff, r, powers = simple
+                if coeff.is_extended_negative:
+                    n += 1
+                    coeff = -coeff
+                n += _simple_mul_ops(coeff, r, powers)
+                continue
+            if _coeff_isneg(a):
+                n += 1
+                a = a.as_two_terms()[1] if a.args[0] is sp.S.NegativeOne else -a
+            num, den = fraction(a)
+            if num.is_Integer:
+                n += 1 + (num.p < 0)
+                todo.append((den, False))
+                continue
+            if den is not sp.S.One:
+                if not den.is_Integer:
+                    todo.append((den, False))
+                n += 1
+                todo.append((num, False))
+                continue
+        elif a.is_Add or a.is_MatAdd:
+            terms = a.args
+            negs = 0
+            for i, t in enumerate(terms):
+                neg = _coeff_isneg(t)
+                negs += neg
+                todo.append((t, neg))
+                n += i > 0
+            n += negs == len(terms)  # -x - y: NEG and SUB
+            continue  # -x + y: SUB for the ADD counted
+        if a.is_Pow and a.exp is sp.S.NegativeOne:
+            n += 1
+            todo.append((a.base, False))
+            continue
+        if a is sp.S.Exp1:
+            n += 1
+            continue
+        if a.is_Pow and a.base is sp.S.Exp1:
+            n += 1
+            todo.append((a.exp, False))
+            continue
+        if a.is_Mul or isinstance(a, LatticeOp):
+            n += len(a.args) - 1
+        elif a.args and (a.is_Pow or a.is_Function
+                         or isinstance(a, (Derivative, Integral, Sum))):
+            n += 1
+        if not a.is_Symbol:
+            todo.extend((x, False) for x in a.args)
+    return n
+
+
 def expanded(expr: sp.Expr) -> sp.Expr:
     """``sympy.expand(expr)``, without the rebuild where ``expr`` is a sum of monomials
     with rational coefficients already (``expand`` returns it unchanged; on polynomials of

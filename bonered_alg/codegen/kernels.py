@@ -17,6 +17,8 @@ from sympy.printing.c import C99CodePrinter
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.precedence import PRECEDENCE, precedence
 
+from ..algebra import polyring as pr
+
 
 def _float_literal(value: float) -> str:
     """A float as a literal valid in Python and C, negative ones parenthesized."""
@@ -301,8 +303,8 @@ def leaner_outputs(outputs: Sequence[sp.Expr], args: Sequence[sp.Symbol],
     lean = []
     for e in outputs:
         e = sp.sympify(e)
-        alt = polynomial_part(e) if sp.count_ops(e) <= small else None
-        lean.append(alt if alt is not None and sp.count_ops(alt) < sp.count_ops(e) else e)
+        alt = polynomial_part(e) if pr.count_ops(e) <= small else None
+        lean.append(alt if alt is not None and pr.count_ops(alt) < pr.count_ops(e) else e)
     if lean == [sp.sympify(e) for e in outputs]:
         return list(outputs)
     before = kernel("_probe", args, outputs, "", scalars=scalars).operations
@@ -346,14 +348,14 @@ def _numpy_function(name, args, subs, reduced, doc, scalars: frozenset) -> tuple
     last = _last_uses(subs, reduced)
     for k, (sym, expr) in enumerate(subs):
         lines.append(f"    {sym} = {printer.doprint(expr)}")
-        ops += int(sp.count_ops(expr))
+        ops += pr.count_ops(expr)
         dead = sorted(last.get(k, ()), key=lambda t: int(t.name[2:]))
         if dead:
             lines.append(f"    del {', '.join(t.name for t in dead)}")
     outs = []
     for expr in reduced:
         outs.append(printer.doprint(expr))
-        ops += int(sp.count_ops(expr))
+        ops += pr.count_ops(expr)
     lines.append(f"    return ({', '.join(outs)},)")
     return "\n".join(lines) + "\n", ops
 
@@ -391,7 +393,7 @@ def shareable_functions(k: Kernel, names: set[str]) -> dict[sp.Expr, list[sp.Exp
     memo: dict[sp.Symbol, sp.Expr | None] = {}
 
     def written_out(e: sp.Expr) -> sp.Expr | None:
-        if sp.count_ops(e) > 4:
+        if pr.count_ops(e) > 4:
             return None
         rep = {}
         for s in e.free_symbols:

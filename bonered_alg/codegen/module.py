@@ -174,7 +174,7 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
         if form is not None and form.platform not in frames:
             point = [sp.sympify(c).xreplace(sub) for c in form.platform]
             frames[form.platform] = (leg_lines.platform_frame(point, pose)
-                                     if sp.count_ops(point) <= LEG_LINE_MAX_OPS else None)
+                                     if pr.count_ops(point) <= LEG_LINE_MAX_OPS else None)
         if form is not None and frames[form.platform] is not None:
             d, scale, row = leg_lines.distance_row(frames[form.platform], form.base,
                                                    form.point, st.joint)

@@ -72,7 +72,7 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
             else:
                 rank = 0 if deg == 1 else (1 if _definite(
                     _coefficient(g, q, 2).subs(constants)) else 2)
-                ranks[i, q] = (rank, sp.count_ops(g), deg)
+                ranks[i, q] = (rank, pr.count_ops(g), deg)
         return ranks[i, q]
 
     free = [g.free_symbols & jset for _, g in generators]

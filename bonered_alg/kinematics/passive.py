@@ -204,7 +204,7 @@ def _candidate(g: sp.Expr, v: sp.Symbol, memo: dict):
             coeffs = _coefficients_in(g, v)
         degree = len(coeffs) - 1
         if degree in (1, 2):  # the operation count ranks candidates of these degrees only
-            out = (int(sp.count_ops(g)), degree, tuple(coeffs[k] for k in range(degree, -1, -1)))
+            out = (pr.count_ops(g), degree, tuple(coeffs[k] for k in range(degree, -1, -1)))
         else:
             out = (None, degree, None)
         memo[key] = out

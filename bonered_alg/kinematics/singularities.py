@@ -70,7 +70,7 @@ def factored(name: str, expr: sp.Expr, meaning: str = "",
     else:
         expr = pr.expanded(expr)
         c, fl = pr.factor_list(expr)
-    fl = sorted(((pr.expanded(f), int(k)) for f, k in fl), key=lambda t: (sp.count_ops(t[0]),
+    fl = sorted(((pr.expanded(f), int(k)) for f, k in fl), key=lambda t: (pr.count_ops(t[0]),
                                                                       sp.srepr(t[0])))
     return FactoredPolynomial(name, expr, c, tuple(fl), meaning, evaluate)
 

@@ -292,7 +292,7 @@ def _pose_map(d) -> list[str]:
             out.append(broken_math(latex(k), v))
         else:
             out.append(f"${latex(k)}$: a rational function of the pose with "
-                       f"{int(sp.count_ops(v))} operations before common-subexpression "
+                       f"{pr.count_ops(v)} operations before common-subexpression "
                        "elimination; its construction is given in the mechanism's own "
                        r"section, its code in \texttt{\_study}.")
     return out
