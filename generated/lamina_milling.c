@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 212e81143646b59dcd838097a2d4a177191156fa49293dcfa875e153c1fe31eb
+ * Derivation hash: 8a2e3f715395666f40cc44d8bdddc311c907a83e71e5d1f0fec67d9de4598b74
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "212e81143646b59dcd838097a2d4a177191156fa49293dcfa875e153c1fe31eb";
+const char bonered_derivation_hash[] = "8a2e3f715395666f40cc44d8bdddc311c907a83e71e5d1f0fec67d9de4598b74";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f9f8b52222bcadb2098d83867179c424e81d01aea3665279e3ebc05d8d9c2d9f
+ * Derivation hash: 7e44173812610761f6f0e5035b745b1fe5ea59f77d508e9a3a0c5570dd1efb23
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f9f8b52222bcadb2098d83867179c424e81d01aea3665279e3ebc05d8d9c2d9f";
+const char bonered_derivation_hash[] = "7e44173812610761f6f0e5035b745b1fe5ea59f77d508e9a3a0c5570dd1efb23";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2c524cc4be79a4d1d4a107d9b785718af44ed39042b7fadd8e0021968cfd00fe
+ * Derivation hash: 508a674db327555aa75dea3652bb47d8b4d2dbb921620a2a2841aadc7f1ebd35
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2c524cc4be79a4d1d4a107d9b785718af44ed39042b7fadd8e0021968cfd00fe";
+const char bonered_derivation_hash[] = "508a674db327555aa75dea3652bb47d8b4d2dbb921620a2a2841aadc7f1ebd35";
 int bonered_abi(void) { return 3; }
 #endif
 

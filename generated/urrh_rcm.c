@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 77e38f112547a0faa8cac3819b5fd336a079f0756c2ad54206749ae4c674f2fd
+ * Derivation hash: 953f4bc634831b9dffb692652e84937239cb2807550a6e1dadddca7c09ea7a42
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "77e38f112547a0faa8cac3819b5fd336a079f0756c2ad54206749ae4c674f2fd";
+const char bonered_derivation_hash[] = "953f4bc634831b9dffb692652e84937239cb2807550a6e1dadddca7c09ea7a42";
 int bonered_abi(void) { return 3; }
 #endif
 

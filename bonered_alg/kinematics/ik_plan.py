@@ -96,7 +96,7 @@ def plan(generators: Sequence[tuple[str, sp.Expr]], joints: Sequence[sp.Symbol],
         if probe is not None:
             best = next((c for c in cands if not _vanishes_at(c[6], c[5], probe)), best)
         _, _, _, _, src, q, g, deg = best
-        coeff = pr.coefficients(sp.expand(g), q)
+        coeff = pr.coefficients(pr.expanded(g), q)  # sp.expand's result
         steps.append(IKStep(q, g, deg, *(_compact(coeff.get(k, sp.Integer(0)))
                                           for k in (2, 1, 0)), src))
         if probe is not None:
@@ -161,7 +161,7 @@ def _coefficient(g: sp.Expr, q: sp.Symbol, k: int) -> sp.Expr:
 def _compact(c: sp.Expr, max_terms: int = 40) -> sp.Expr:
     """Factored when small (readable reports, fewer operations); large coefficients are left
     expanded: multivariate factorization (Wang's algorithm) can take minutes on them."""
-    c = sp.expand(c)
+    c = pr.expanded(c)  # sp.expand's result, without its pass over a sum of monomials
     return sp.factor(c) if len(sp.Add.make_args(c)) <= max_terms else c
 
 
