@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8a2e3f715395666f40cc44d8bdddc311c907a83e71e5d1f0fec67d9de4598b74
+ * Derivation hash: 35309ab49e17bdc6dec67e3f8c9068871d6ea1c3c2f3942a84952db50aba40ed
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8a2e3f715395666f40cc44d8bdddc311c907a83e71e5d1f0fec67d9de4598b74";
+const char bonered_derivation_hash[] = "35309ab49e17bdc6dec67e3f8c9068871d6ea1c3c2f3942a84952db50aba40ed";
 int bonered_abi(void) { return 3; }
 #endif
 

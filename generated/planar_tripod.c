@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7d36a65c2879be1914d7f621b7a7b0ee46edd3c760d78a192953fad3e6e1902a
+ * Derivation hash: 14711e4bc5e04810de489ee31894fcbe262c92744f36a1526363259679a05395
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7d36a65c2879be1914d7f621b7a7b0ee46edd3c760d78a192953fad3e6e1902a";
+const char bonered_derivation_hash[] = "14711e4bc5e04810de489ee31894fcbe262c92744f36a1526363259679a05395";
 int bonered_abi(void) { return 3; }
 #endif
 

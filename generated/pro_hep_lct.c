@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7e44173812610761f6f0e5035b745b1fe5ea59f77d508e9a3a0c5570dd1efb23
+ * Derivation hash: 8ef9cc2291c8871b22611c22fa95270d976f28ef74fb998dd6360492b30c32e1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7e44173812610761f6f0e5035b745b1fe5ea59f77d508e9a3a0c5570dd1efb23";
+const char bonered_derivation_hash[] = "8ef9cc2291c8871b22611c22fa95270d976f28ef74fb998dd6360492b30c32e1";
 int bonered_abi(void) { return 3; }
 #endif
 

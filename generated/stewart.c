@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 508a674db327555aa75dea3652bb47d8b4d2dbb921620a2a2841aadc7f1ebd35
+ * Derivation hash: ea4138f862e7302b24b2effd484d1587309720979a656a067d1b64e8e7ba8464
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "508a674db327555aa75dea3652bb47d8b4d2dbb921620a2a2841aadc7f1ebd35";
+const char bonered_derivation_hash[] = "ea4138f862e7302b24b2effd484d1587309720979a656a067d1b64e8e7ba8464";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ca5c9a20cf1425a68f108e7c507081a438b4839fcfe34f3ed346e905d1e85fca
+ * Derivation hash: 8d7d9a9b626db822e8d011ff10e98bc21e761e422e8b3ef020ab35a9fa8af731
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ca5c9a20cf1425a68f108e7c507081a438b4839fcfe34f3ed346e905d1e85fca";
+const char bonered_derivation_hash[] = "8d7d9a9b626db822e8d011ff10e98bc21e761e422e8b3ef020ab35a9fa8af731";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 953f4bc634831b9dffb692652e84937239cb2807550a6e1dadddca7c09ea7a42
+ * Derivation hash: 1c97e715196fba5b8728e925089ed5740f2e3ef4fcf3fc1ab0a4282cee2e9d37
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "953f4bc634831b9dffb692652e84937239cb2807550a6e1dadddca7c09ea7a42";
+const char bonered_derivation_hash[] = "1c97e715196fba5b8728e925089ed5740f2e3ef4fcf3fc1ab0a4282cee2e9d37";
 int bonered_abi(void) { return 3; }
 #endif
 

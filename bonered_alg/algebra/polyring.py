@@ -441,15 +441,9 @@ def _simple_mul(a: sp.Expr):
     args = a.args
     coeff = args[0] if args[0].is_Number else sp.S.One
     factors = args[1:] if args[0].is_Number else args
-    powers = 0
-    for f in factors:
-        if f.is_Pow:
-            if not (f.base.is_Symbol and f.exp.is_Integer and f.exp.p > 0):
-                return None
-            powers += 1
-        elif not f.is_Symbol:
-            return None
-    return coeff, len(factors), powers
+    if any(_symbol_power(f) is None for f in factors):
+        return None
+    return coeff, len(factors), sum(1 for f in factors if f.is_Pow)
 
 
 def _simple_mul_ops(coeff: sp.Expr, r: int, powers: int) -> int:
@@ -482,24 +476,20 @@ def count_ops(expr) -> int:
     todo: list = [(expr, False)]  # (expression, negate it first)
     while todo:
         a, negate = todo.pop()
+        if a.is_Mul and (simple := _simple_mul(a)) is not None:
+            coeff, r, powers = simple
+            if coeff.is_extended_negative:
+                n += not negate  # NEG, unless a sum's SUB stands for the sign
+                coeff = -coeff
+            n += _simple_mul_ops(coeff, r, powers)
+            continue
         if negate:
-            if a.is_Mul and (simple := _simple_mul(a)) is not None:
-                coeff, r, powers = simple
-                n += _simple_mul_ops(-coeff, r, powers)
-                continue
             a = -a
         if a.is_Rational:
             if a is not sp.S.One:
                 n += (a.p < 0) + (a.q != 1)
                 continue
         elif a.is_Mul or a.is_MatMul:
-            if a.is_Mul and (simple := _simple_mul(a)) is not None:
-                coeff, r, powers = simple
-                if coeff.is_extended_negative:
-                    n += 1
-                    coeff = -coeff
-                n += _simple_mul_ops(coeff, r, powers)
-                continue
             if _coeff_isneg(a):
                 n += 1
                 a = a.as_two_terms()[1] if a.args[0] is sp.S.NegativeOne else -a

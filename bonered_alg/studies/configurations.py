@@ -69,8 +69,7 @@ def vanishing_configurations(gen, names, home: np.ndarray) -> dict:
                 va.append(v[i])
     if brackets:
         a, b, va = np.array(a_rows), np.array(b_rows), np.array(va, dtype=float)
-        rows = {name: np.array([k for k, br in enumerate(brackets) if br[0] == name])
-                for name in names}
+        of = np.array([names.index(br[0]) for br in brackets])  # each bracket's polynomial
         active = np.ones(len(brackets), dtype=bool)
         for _ in range(HALVINGS):
             if not active.any():
@@ -78,11 +77,7 @@ def vanishing_configurations(gen, names, home: np.ndarray) -> dict:
             at = np.flatnonzero(active)
             mid = (a[at] + b[at]) / 2
             got = values(mid)
-            vm = np.empty(len(at))
-            for name, k in rows.items():
-                if k.size:
-                    pick = np.isin(at, k)
-                    vm[pick] = got[name][pick]
+            vm = np.stack([got[name] for name in names])[of[at], np.arange(len(at))]
             # the IK fails there (e.g. an input singularity): that bracket stops
             stop = ~np.isfinite(vm)
             active[at[stop]] = False
