@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 35309ab49e17bdc6dec67e3f8c9068871d6ea1c3c2f3942a84952db50aba40ed
+ * Derivation hash: b76e1d8814e06486fa3cc0d53ee7bebcc7bdb559308b1d99b4470d4b00ae3be3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "35309ab49e17bdc6dec67e3f8c9068871d6ea1c3c2f3942a84952db50aba40ed";
+const char bonered_derivation_hash[] = "b76e1d8814e06486fa3cc0d53ee7bebcc7bdb559308b1d99b4470d4b00ae3be3";
 int bonered_abi(void) { return 3; }
 #endif
 

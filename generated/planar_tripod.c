@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 14711e4bc5e04810de489ee31894fcbe262c92744f36a1526363259679a05395
+ * Derivation hash: 5fffde6c5c04f05a4d87aefe3495da1185024904ea7a11326e8c64db19c03c1d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "14711e4bc5e04810de489ee31894fcbe262c92744f36a1526363259679a05395";
+const char bonered_derivation_hash[] = "5fffde6c5c04f05a4d87aefe3495da1185024904ea7a11326e8c64db19c03c1d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ea4138f862e7302b24b2effd484d1587309720979a656a067d1b64e8e7ba8464
+ * Derivation hash: 831af93a5de96170e5bc154c3fd08f7a6d008121519931ee4993f703a9c08d79
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ea4138f862e7302b24b2effd484d1587309720979a656a067d1b64e8e7ba8464";
+const char bonered_derivation_hash[] = "831af93a5de96170e5bc154c3fd08f7a6d008121519931ee4993f703a9c08d79";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8d7d9a9b626db822e8d011ff10e98bc21e761e422e8b3ef020ab35a9fa8af731
+ * Derivation hash: 13f01f4b2d624a9aae3032c0e5e3daea0bb2aabbe1556673a16a4de3149bcddb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8d7d9a9b626db822e8d011ff10e98bc21e761e422e8b3ef020ab35a9fa8af731";
+const char bonered_derivation_hash[] = "13f01f4b2d624a9aae3032c0e5e3daea0bb2aabbe1556673a16a4de3149bcddb";
 int bonered_abi(void) { return 3; }
 #endif
 

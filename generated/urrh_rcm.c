@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1c97e715196fba5b8728e925089ed5740f2e3ef4fcf3fc1ab0a4282cee2e9d37
+ * Derivation hash: 0609f77ad11bcbce85d5bb4b30450d48a4b59c725bc732ac6c571a7024ce54a0
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1c97e715196fba5b8728e925089ed5740f2e3ef4fcf3fc1ab0a4282cee2e9d37";
+const char bonered_derivation_hash[] = "0609f77ad11bcbce85d5bb4b30450d48a4b59c725bc732ac6c571a7024ce54a0";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -154,3 +154,45 @@ def test_numeric_coordinates_are_subs_of_the_whole_configuration_bit_for_bit():
              sp.sqrt(3) * syms[4] * syms[9] / (1 + syms[9] ** 2)]
     want = np.array([float(sp.sympify(c).subs(vals)) for c in point])
     assert np.array_equal(_numeric(point, vals), want)
+
+
+def test_cofactor_determinant_is_the_determinant():
+    """kinematics.singularities.cofactor_determinant expands along the row or column with
+    the most zeros, unexpanded; expanded, it is sympy's Bareiss determinant, for matrices of
+    sizes 1-4 with zeros in rows, in columns and nowhere."""
+    import random
+
+    from bonered_alg.kinematics.singularities import cofactor_determinant
+
+    rng = random.Random(7)
+    syms = (x, y, z, a, b)
+    for n in (1, 2, 3, 4):
+        for zero_col in (False, True):
+            entries = [[sp.Integer(rng.randint(-3, 3)) * rng.choice(syms)
+                        + sp.Rational(rng.randint(-5, 5), rng.randint(1, 4))
+                        * rng.choice(syms) ** rng.randint(0, 2)
+                        for _ in range(n)] for _ in range(n)]
+            for _ in range(n):  # a few zeros anywhere
+                entries[rng.randrange(n)][rng.randrange(n)] = sp.Integer(0)
+            if zero_col and n > 2:  # a column with more zeros than any row
+                for i in range(n - 1):
+                    entries[i][1] = sp.Integer(0)
+            m = sp.Matrix(entries)
+            got = cofactor_determinant(m)
+            assert sp.expand(got - m.det(method="bareiss")) == 0
+
+
+def test_evaluation_form_is_the_shorter_of_the_two():
+    """The generated code evaluates a determinant from its matrix's entries only where
+    that counts fewer operations than the expanded determinant."""
+    from bonered_alg.algebra.polyring import count_ops
+    from bonered_alg.kinematics.singularities import cofactor_determinant, evaluation_form
+
+    wide = sp.Matrix([[(x + y + 1) ** 3, a + b], [z - a, (x - b) ** 3]])
+    expanded = sp.expand(wide.det())
+    form = evaluation_form(expanded, wide)
+    assert form is not None and count_ops(form) < count_ops(expanded)
+    assert sp.expand(form - expanded) == 0
+    plain = sp.Matrix([[x, y], [z, a]])  # x a - y z: the same length either way
+    assert count_ops(cofactor_determinant(plain)) >= count_ops(x * a - y * z)
+    assert evaluation_form(sp.expand(plain.det()), plain) is None

@@ -170,6 +170,11 @@ def count_solutions(system: RPSSystem, mech, algebra) -> tuple[int, dict]:
     return count, values
 
 
+def forward_jacobian(system: RPSSystem) -> sp.Matrix:
+    """``d(e12, e23, e31)/d(u1, u2, u3)``, the matrix of :func:`forward_singularity`."""
+    return pr.jacobian(system.equations, system.angles)
+
+
 def forward_singularity(system: RPSSystem) -> sp.Expr:
     """``det d(e12, e23, e31)/d(u1, u2, u3)``: zero where two assembly modes merge, the
     forward (type II) singularity of the tripod; in the leg angles and lengths."""

@@ -119,11 +119,11 @@ def _velocity_and_singularities(mech: Mechanism, steps: tuple[IKStep, ...]):
                   and large_product(diag) else ji.det(method="berkowitz"))
         out.append(factored(f"det_Ji_{closure.point}", det_ji,
                             f"input singularity of the {closure.name}: det dG/d("
-                            + ", ".join(map(str, joints)) + ")"))
+                            + ", ".join(map(str, joints)) + ")", matrix=ji))
         if jo.shape[0] == jo.shape[1]:
             out.append(factored(f"det_Jo_{closure.point}", jo.det(method="berkowitz"),
                                 f"output singularity of the {closure.name}: det dG/d("
-                                + ", ".join(map(str, pose)) + ")"))
+                                + ", ".join(map(str, pose)) + ")", matrix=jo))
         else:
             out += _forward_matrix(closure, jo, pose)
         for s in csteps:
