@@ -25,13 +25,13 @@ system-deps:
 
 install: $(STAMP) system-deps
 
+# the comparison study starts as soon as the three mechanisms it scans are derived, while
+# the workers derive the others (cli derive --comparison)
 derive: install
-	$(PY) -m bonered_alg.cli derive
-	$(PY) -m bonered_alg.cli comparison
+	$(PY) -m bonered_alg.cli derive --comparison
 
 derive-force: install
-	$(PY) -m bonered_alg.cli derive --force
-	$(PY) -m bonered_alg.cli comparison --force
+	$(PY) -m bonered_alg.cli derive --force --comparison
 
 # one worker per core; each test module (or group of them, tests/conftest.py) on one worker
 test: install
@@ -42,7 +42,7 @@ bench: install
 
 report: install
 	@bash scripts/install-system-deps.sh --latex
-	$(PY) -m bonered_alg.cli derive
+	$(PY) -m bonered_alg.cli derive --comparison
 	$(PY) -m bonered_alg.cli report
 	cd derivations && latexmk -c -quiet >/dev/null
 

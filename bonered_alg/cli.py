@@ -154,6 +154,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--jobs", type=int, default=None,
                    help="worker processes, one mechanism each (default: $BONERED_ALG_JOBS, "
                    "else all cores; 1: in this process)")
+    p.add_argument("--comparison", action="store_true",
+                   help="also the comparison study (as `comparison`, forced with --force), "
+                   "started as soon as the mechanisms it scans are derived")
     sub.add_parser("list", help="list the mechanisms")
     i = sub.add_parser("info", help="what a generated module offers (pose, joints, modes, "
                        "parameters, functions, status codes)")
@@ -206,12 +209,7 @@ def main(argv: list[str] | None = None) -> int:
                 from .workspace import command
 
                 return command.workspace(args)
-            from .studies.comparison_report import write
-
-            written = write(Path(args.root).resolve(), args.workers, args.force,
-                            None if args.quiet else print)
-            print("comparison: " + (", ".join(p.name for p in written) if written
-                                    else "up to date"))
+            _comparison(Path(args.root).resolve(), args.workers, args.force, args.quiet)
             return 0
         except ValueError as exc:
             print(f"bonered-alg {args.command}: error: {exc}", file=sys.stderr)
@@ -222,12 +220,40 @@ def main(argv: list[str] | None = None) -> int:
     try:
         engine = get_engine(args.engine)
         print(f"Groebner engine: {engine.name}", flush=True)
+        then = None
+        if args.comparison:
+            from .studies.comparison_report import MECHANISMS
+
+            root = args.root.resolve()
+            def comparison() -> None:
+                try:
+                    _comparison(root, None, args.force, args.quiet)
+                except ValueError as exc:  # reported as the comparison command reports it
+                    raise _ComparisonFailed(str(exc)) from exc
+
+            then = (MECHANISMS, comparison)
         derive_all(args.root.resolve(), args.names or None, args.force, engine,
-                   progress=None if args.quiet else print, jobs=args.jobs)
+                   progress=None if args.quiet else print, jobs=args.jobs, then=then)
     except (BoneredError, KeyError, NotImplementedError) as exc:
         print(f"bonered-alg: error: {exc}", file=sys.stderr)
         return 2
+    except _ComparisonFailed as exc:
+        print(f"bonered-alg comparison: error: {exc}", file=sys.stderr)
+        return 2
     return 0
+
+
+class _ComparisonFailed(Exception):
+    """A ValueError of the comparison run by ``derive --comparison``."""
+
+
+def _comparison(root: Path, workers: int | None, force: bool, quiet: bool) -> None:
+    """The comparison study written (unless up to date) and what was written printed."""
+    from .studies.comparison_report import write
+
+    written = write(root, workers, force, None if quiet else print)
+    print("comparison: " + (", ".join(p.name for p in written) if written
+                            else "up to date"), flush=True)
 
 
 if __name__ == "__main__":

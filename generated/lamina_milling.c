@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b76e1d8814e06486fa3cc0d53ee7bebcc7bdb559308b1d99b4470d4b00ae3be3
+ * Derivation hash: c280f366089079a5bdefc0da5026aec6f57688f60e0f0dbdce89ad51af6f08ff
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b76e1d8814e06486fa3cc0d53ee7bebcc7bdb559308b1d99b4470d4b00ae3be3";
+const char bonered_derivation_hash[] = "c280f366089079a5bdefc0da5026aec6f57688f60e0f0dbdce89ad51af6f08ff";
 int bonered_abi(void) { return 3; }
 #endif
 

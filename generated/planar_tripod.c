@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5fffde6c5c04f05a4d87aefe3495da1185024904ea7a11326e8c64db19c03c1d
+ * Derivation hash: 32a8d2a81d2b17b3fe06dd51d04a4c7f0b0aa376e25bd93ea437b1dd952db5af
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5fffde6c5c04f05a4d87aefe3495da1185024904ea7a11326e8c64db19c03c1d";
+const char bonered_derivation_hash[] = "32a8d2a81d2b17b3fe06dd51d04a4c7f0b0aa376e25bd93ea437b1dd952db5af";
 int bonered_abi(void) { return 3; }
 #endif
 

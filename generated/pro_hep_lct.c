@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7e4be6ec953a1e7168ab94a1e5bddf6a3f1a7bf4e2c6998bcc90d92f82b1f1e7
+ * Derivation hash: 5bb715b4ed539858482daaf8c437aacf287ba1ad767c10d179ddd1f56ca92677
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7e4be6ec953a1e7168ab94a1e5bddf6a3f1a7bf4e2c6998bcc90d92f82b1f1e7";
+const char bonered_derivation_hash[] = "5bb715b4ed539858482daaf8c437aacf287ba1ad767c10d179ddd1f56ca92677";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 831af93a5de96170e5bc154c3fd08f7a6d008121519931ee4993f703a9c08d79
+ * Derivation hash: 0cd61cf78ba85ae2b9ce42a7861d8b39817cddf083a0d7a1357b46650e46c54d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "831af93a5de96170e5bc154c3fd08f7a6d008121519931ee4993f703a9c08d79";
+const char bonered_derivation_hash[] = "0cd61cf78ba85ae2b9ce42a7861d8b39817cddf083a0d7a1357b46650e46c54d";
 int bonered_abi(void) { return 3; }
 #endif
 

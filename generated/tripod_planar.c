@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 13f01f4b2d624a9aae3032c0e5e3daea0bb2aabbe1556673a16a4de3149bcddb
+ * Derivation hash: f481c017d60d5bd9e5dd3d8a89eb7a704e520c4c0e7254f86b5741b16e86c6f3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "13f01f4b2d624a9aae3032c0e5e3daea0bb2aabbe1556673a16a4de3149bcddb";
+const char bonered_derivation_hash[] = "f481c017d60d5bd9e5dd3d8a89eb7a704e520c4c0e7254f86b5741b16e86c6f3";
 int bonered_abi(void) { return 3; }
 #endif
 

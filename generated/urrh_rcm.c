@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0609f77ad11bcbce85d5bb4b30450d48a4b59c725bc732ac6c571a7024ce54a0
+ * Derivation hash: a388ea37e1caa688ad3796160d1cc58a11583f65053b0bb116afbf0d4bf6c645
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0609f77ad11bcbce85d5bb4b30450d48a4b59c725bc732ac6c571a7024ce54a0";
+const char bonered_derivation_hash[] = "a388ea37e1caa688ad3796160d1cc58a11583f65053b0bb116afbf0d4bf6c645";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -42,6 +42,32 @@ def test_derive_jobs_must_be_positive(capsys, monkeypatch):
     assert "--jobs must be a positive integer, got 0" in capsys.readouterr().err
 
 
+def test_derive_comparison_hands_the_study_to_the_runner(capsys, monkeypatch, tmp_path):
+    """derive --comparison gives the runner the comparison study and the three mechanisms
+    it scans (forced with --force); its ValueError is reported as the comparison command
+    reports it, exit 2."""
+    from bonered_alg.pipeline import runner
+    from bonered_alg.studies import comparison_report
+
+    seen = {}
+
+    def fake_derive_all(root, names, force, engine, progress=None, jobs=None, then=None):
+        seen.update(force=force, needs=tuple(then[0]))
+        then[1]()
+
+    def fake_write(root, workers, force, progress):
+        seen["comparison_force"] = force
+        raise ValueError("no generated module for mechanism 'stewart'")
+
+    monkeypatch.setattr(runner, "derive_all", fake_derive_all)
+    monkeypatch.setattr(comparison_report, "write", fake_write)
+    assert cli.main(["derive", "--force", "--comparison", "--root", str(tmp_path)]) == 2
+    assert seen == {"force": True, "needs": comparison_report.MECHANISMS,
+                    "comparison_force": True}
+    err = capsys.readouterr().err
+    assert "bonered-alg comparison: error: no generated module for mechanism 'stewart'" in err
+
+
 def test_info_describes_the_generated_module(capsys):
     from bonered_alg.generated import planar_tripod as m
 

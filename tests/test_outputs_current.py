@@ -122,7 +122,9 @@ def test_missing_engine_leaves_outputs_untouched(tmp_path, monkeypatch):
 
 def test_parallel_derive_writes_the_committed_bytes(tmp_path):
     """derive_all in two worker processes (one mechanism each) writes what a serial run
-    wrote: the committed outputs, byte for byte, and logs in registry order."""
+    wrote: the committed outputs, byte for byte, and logs in registry order.  A study
+    handed to it (``then``, as ``derive --comparison``) runs once, after the mechanism it
+    needs; its error is raised after every derivation is written and logged."""
     from bonered_alg.pipeline.runner import derive_all
 
     names = ["pro_hep_lct", "lamina_milling"]
@@ -130,6 +132,18 @@ def test_parallel_derive_writes_the_committed_bytes(tmp_path):
         shutil.copytree(ROOT / folder, tmp_path / folder)
     shutil.copy(ROOT / "constraints.txt", tmp_path)  # derivations/toolchain.json hashes it
     before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    lines, calls = [], []
+
+    def study():
+        calls.append(sorted(line.split(":")[0] for line in lines))
+        raise RuntimeError("the study failed")
+
+    with pytest.raises(RuntimeError, match="the study failed"):
+        derive_all(tmp_path, names, force=True, log=lines.append, jobs=2,
+                   then=(["lamina_milling"], study))
+    assert calls == [[]]  # once, before the derivations were logged (registry order)
+    assert [line.split(":")[0] for line in lines] == names
+    assert all(line.endswith("wrote nothing new") for line in lines), lines
     lines = []
     status = derive_all(tmp_path, names, force=True, log=lines.append, jobs=2)
     assert status == {n: "derived" for n in names}

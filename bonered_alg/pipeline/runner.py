@@ -7,7 +7,8 @@ import json
 import multiprocessing
 import os
 import time
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Callable, Collection
+from concurrent.futures import ProcessPoolExecutor, wait
 from dataclasses import replace
 from pathlib import Path
 from types import ModuleType
@@ -161,7 +162,9 @@ def longest_first(names: list[str]) -> list[str]:
 
 def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
                engine: Engine | None = None, log=print, progress=None,
-               jobs: int | None = None) -> dict[str, str]:
+               jobs: int | None = None,
+               then: tuple[Collection[str], Callable[[], None]] | None = None
+               ) -> dict[str, str]:
     """Derive and write each mechanism whose outputs are missing or out of date, and the
     record of the Study-parameter framework (``papers/study_algebra.py``); where anything
     was derived, the record of the engine and packages used (:mod:`.toolchain`).
@@ -169,7 +172,14 @@ def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
     With ``jobs`` > 1 (default :func:`default_jobs`) the mechanisms are derived in that many
     worker processes, each mechanism in one process from start to finish: every output is
     the same bytes as a serial run (each depends on its own mechanism only and is written
-    atomically); the log lines come in registry order, the progress lines as they happen."""
+    atomically); the log lines come in registry order, the progress lines as they happen.
+
+    ``then``: ``(mechanisms, run)``; ``run()`` is called in this process once every
+    mechanism of ``mechanisms`` that is derived here has been written, while the workers
+    go on with the others (those are handed out after them): a study of those modules
+    (the comparison, ``cli derive --comparison``) then fills the cores that the last
+    derivations leave idle.  Not called where one of them failed; an error of ``run`` is
+    raised after the derivations have finished and been logged."""
     from ..papers import study_algebra
 
     status = {}
@@ -185,17 +195,28 @@ def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
             todo.append(name)
     jobs = min(len(todo), jobs or default_jobs())
     seconds: dict[str, float] = {}
+    needs = set(then[0]) if then is not None else set()
+    failure: BaseException | None = None
     if jobs <= 1:
         for name in todo:
             line, seconds[name] = _derive_and_write(name, root, engine, progress)
             log(line)
             status[name] = "derived"
+        if then is not None:
+            failure = _call(then[1])
     else:
         ctx = multiprocessing.get_context("spawn")  # no fork of a process with threads
         with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
+            order = (longest_first([n for n in todo if n in needs])
+                     + longest_first([n for n in todo if n not in needs]))
             futures = {name: pool.submit(_derive_in_worker, name, root, engine,
                                          progress is not None)
-                       for name in longest_first(todo)}
+                       for name in order}
+            if then is not None:
+                needed = [futures[n] for n in todo if n in needs]
+                wait(needed)
+                if all(f.exception() is None for f in needed):
+                    failure = _call(then[1])
             for name in todo:
                 line, seconds[name] = futures[name].result()
                 log(line)
@@ -203,4 +224,16 @@ def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
     _record_seconds(seconds)
     if "derived" in status.values() or toolchain.recorded(root) is None:
         toolchain.write(root, engine or get_engine())
+    if failure is not None:
+        raise failure
     return status
+
+
+def _call(run: Callable[[], None]) -> Exception | None:
+    """``run()``; its error returned (raised by :func:`derive_all` once the derivations
+    are written and logged)."""
+    try:
+        run()
+    except Exception as exc:
+        return exc
+    return None

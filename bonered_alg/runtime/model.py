@@ -462,22 +462,18 @@ class Model:
                 for lim, v in zip(self.limits, values)}
 
     # ------------------------------------------------------------ velocity model
-    def _matrices(self, pose, q, par):
+    def _matrix(self, kern, m, pose, q, par):
+        """The (len(JOINTS), m) matrix per pose of ``kern`` (``ji`` or ``jo_study``, row-major
+        entries): only the one asked for is evaluated."""
         shape = pose.shape[:-1]
-        n = len(self.joints)
-
-        def mat(values, m):
-            return stacked(values, shape).reshape(shape + (n, m))
-
-        cols, qc = columns(pose), columns(q)
-        return (mat(self.ji(*cols, *qc, *par), n),
-                mat(self.jo_study(*cols, *qc, *par), len(self.study_pose)))
+        return stacked(kern(*columns(pose), *columns(q), *par), shape).reshape(
+            shape + (len(self.joints), m))
 
     def input_jacobian(self, pose, q, params=None):
         pose = check.pose(self, "input_jacobian", pose)
         t = self.algebraic(check.joints(self, "input_jacobian", q, pose.shape[:-1]))
-        ji = self._matrices(pose, t, check.parameters(self, "input_jacobian",
-                                                      params or {}))[0]
+        ji = self._matrix(self.ji, len(self.joints), pose, t,
+                          check.parameters(self, "input_jacobian", params or {}))
         if self.angles:  # dG/dq = dG/dt dt/dq, dt/dq = (1 + t^2) / 2
             idx = list(self.angles)
             ji[..., :, idx] *= ((1.0 + t[..., idx] ** 2) / 2.0)[..., None, :]
@@ -486,8 +482,8 @@ class Model:
     def output_jacobian(self, pose, q, params=None):
         pose = check.pose(self, "output_jacobian", pose)
         q = self.algebraic(check.joints(self, "output_jacobian", q, pose.shape[:-1]))
-        return self._matrices(pose, q, check.parameters(self, "output_jacobian",
-                                                        params or {}))[1]
+        return self._matrix(self.jo_study, len(self.study_pose), pose, q,
+                            check.parameters(self, "output_jacobian", params or {}))
 
     def _jac_values(self, pose, q, par, into=None, row_scale=None, shared=None):
         """The Jacobian kernel's outputs (pivots, row scales, dq/dX row-major), one row
