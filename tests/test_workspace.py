@@ -437,6 +437,40 @@ def test_recovered_planar_stroke_reproduces_000_table2_independently():
     assert dx0 < 100 and dy0 < 100
 
 
+def test_stroke_search_bound_finds_the_brute_force_optimum(monkeypatch):
+    """best_on_lattice (the coarse stroke search) returns the point that min over every
+    lattice point's (error, point) returns, ties included, reading fewer points, for
+    synthetic ranges that grow with the stroke range as the home component does (None,
+    home unreachable, for narrow ranges), quantized to steps so that errors tie."""
+    from bonered_alg.studies import planar_stroke_000 as ps
+
+    los, his = np.arange(100.0, 216.0, 5.0), np.arange(225.0, 351.0, 5.0)
+
+    def ranges(lo, hi, scale):
+        if hi - lo < 40.0:
+            return None
+        w = hi - lo
+        return {"x": 4.0 * np.floor(scale * w ** 0.9 / 4.0),
+                "y": 4.0 * np.floor(scale * (0.6 * w + 0.2 * hi) / 4.0),
+                "gamma": float(min(180.0, np.floor(0.8 * w)))}
+
+    exact = tuple(ranges(100.0, 250.0, 1.0).values())  # error 0 at several points: ties
+    for target, scale in (((175.0, 170.0, 105.0), 1.0), ((150.0, 140.0, 160.0), 1.3),
+                          ((400.0, 1.0, 30.0), 0.7), (exact, 1.0)):
+        monkeypatch.setattr(ps, "TARGET", dict(zip(("x", "y", "gamma"), target)))
+        read = []
+
+        def results(points, scale=scale, read=read):
+            read.extend(points)
+            return {p: ranges(*p, scale) for p in points}
+
+        got = ps.best_on_lattice(los, his, results)
+        every = [(ps._error(r), (float(a), float(b))) for a in los for b in his  # noqa: SLF001
+                 if (r := ranges(a, b, scale)) is not None]
+        assert got == min(every)[1]
+        assert len(set(read)) < len(los) * len(his)
+
+
 def test_home_component_stops_at_the_planar_input_singularity():
     """000 variant with 001's planar strokes (120-325 mm): poses beyond gamma = -60 deg are
     within every joint range (independent model) but reachable from home only through the
