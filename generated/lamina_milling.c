@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c280f366089079a5bdefc0da5026aec6f57688f60e0f0dbdce89ad51af6f08ff
+ * Derivation hash: f55342891f53265680c15e386a82c30ddcfc1ecf83e41993bfc0426153df0f96
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c280f366089079a5bdefc0da5026aec6f57688f60e0f0dbdce89ad51af6f08ff";
+const char bonered_derivation_hash[] = "f55342891f53265680c15e386a82c30ddcfc1ecf83e41993bfc0426153df0f96";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 32a8d2a81d2b17b3fe06dd51d04a4c7f0b0aa376e25bd93ea437b1dd952db5af
+ * Derivation hash: d3510715a4da7093fb57c9de8d5bb1b73761ec324c8143f1900ee461c3c247b3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "32a8d2a81d2b17b3fe06dd51d04a4c7f0b0aa376e25bd93ea437b1dd952db5af";
+const char bonered_derivation_hash[] = "d3510715a4da7093fb57c9de8d5bb1b73761ec324c8143f1900ee461c3c247b3";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5bb715b4ed539858482daaf8c437aacf287ba1ad767c10d179ddd1f56ca92677
+ * Derivation hash: 99821b61f3ebc0ec57dc27cacefc10f4a471a926581da5d334af14a97e28dc14
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5bb715b4ed539858482daaf8c437aacf287ba1ad767c10d179ddd1f56ca92677";
+const char bonered_derivation_hash[] = "99821b61f3ebc0ec57dc27cacefc10f4a471a926581da5d334af14a97e28dc14";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0cd61cf78ba85ae2b9ce42a7861d8b39817cddf083a0d7a1357b46650e46c54d
+ * Derivation hash: 3f56d2d6024a5e138b40f74b61105d68cba45c0db18dd2374f76281d84f60145
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0cd61cf78ba85ae2b9ce42a7861d8b39817cddf083a0d7a1357b46650e46c54d";
+const char bonered_derivation_hash[] = "3f56d2d6024a5e138b40f74b61105d68cba45c0db18dd2374f76281d84f60145";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f481c017d60d5bd9e5dd3d8a89eb7a704e520c4c0e7254f86b5741b16e86c6f3
+ * Derivation hash: fea09b040f46dc6f88f74729b4e06c7441650576b71b1a2cac2216a6502088fa
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f481c017d60d5bd9e5dd3d8a89eb7a704e520c4c0e7254f86b5741b16e86c6f3";
+const char bonered_derivation_hash[] = "fea09b040f46dc6f88f74729b4e06c7441650576b71b1a2cac2216a6502088fa";
 int bonered_abi(void) { return 3; }
 #endif
 

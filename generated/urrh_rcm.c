@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a388ea37e1caa688ad3796160d1cc58a11583f65053b0bb116afbf0d4bf6c645
+ * Derivation hash: a8f91bf1024cbbee1b86f620054d64ecda245f36068119274189dcd4b848fbac
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a388ea37e1caa688ad3796160d1cc58a11583f65053b0bb116afbf0d4bf6c645";
+const char bonered_derivation_hash[] = "a8f91bf1024cbbee1b86f620054d64ecda245f36068119274189dcd4b848fbac";
 int bonered_abi(void) { return 3; }
 #endif
 

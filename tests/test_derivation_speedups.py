@@ -196,3 +196,22 @@ def test_evaluation_form_is_the_shorter_of_the_two():
     plain = sp.Matrix([[x, y], [z, a]])  # x a - y z: the same length either way
     assert count_ops(cofactor_determinant(plain)) >= count_ops(x * a - y * z)
     assert evaluation_form(sp.expand(plain.det()), plain) is None
+
+
+def test_simplified_is_simplify_with_zero_taken_early():
+    """polyring.simplified gives sp.simplify's result: 0 where the difference cancels (a
+    trigonometric and a radical identity, a rational one), simplify's own answer where it
+    does not."""
+    from bonered_alg.algebra.polyring import simplified
+
+    t = sp.Symbol("t", real=True)
+    zero = [sp.sin(a) ** 2 + sp.cos(a) ** 2 - 1 - (sp.sin(a) ** 2 + sp.cos(a) ** 2 - 1),
+            2 * t / (1 + t**2) - 2 * t * (1 - t**2) / (1 - t**4),
+            sp.sqrt(3) * x / (1 + sp.sqrt(3)) - sp.sqrt(3) * x * (sp.sqrt(3) - 1) / 2]
+    other = [sp.sin(a) ** 2 + sp.cos(a) ** 2, (x**2 - 1) / (x - 1) - y,
+             sp.tan(a / 2) - sp.sin(a) / (1 + sp.cos(a)) + x]
+    for e in zero:
+        assert simplified(e) == 0 and sp.simplify(e) == 0
+    for e in other:
+        assert sp.srepr(simplified(e)) == sp.srepr(sp.simplify(e))
+        assert simplified(e) != 0

@@ -200,7 +200,7 @@ def angles_from_platform(system: RPSSystem, platform_study: tuple) -> dict[sp.Sy
         c, s = direction.subs(u, 0), direction.subs(u, 1)
         # the identity behind the formula, on the chain itself
         check = (q * direction).dot(s) / (q + (q * direction).dot(c)) - u
-        if sp.simplify(check) != 0:
+        if pr.simplified(check) != 0:
             raise ValueError(f"{system.closure}: leg of {q} does not turn its direction as "
                              "cos(theta) c + sin(theta) s; no tan-half angle formula")
         d = (rot * sp.Matrix(p) + trans) / n - base

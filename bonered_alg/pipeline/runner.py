@@ -183,21 +183,29 @@ def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
     from ..papers import study_algebra
 
     status = {}
-    if not names:
-        status["study_algebra"] = study_algebra.write_record(root, force, log)
-    todo = []
+    todo, current_lines = [], []
     for name in names or list(REGISTRY):
         current = current_hash(name)
         if not force and outputs.recorded_hash(root, name) == current:
-            log(f"{name}: up to date ({current[:12]})")
+            current_lines.append(f"{name}: up to date ({current[:12]})")
             status[name] = "up to date"
         else:
             todo.append(name)
     jobs = min(len(todo), jobs or default_jobs())
+
+    def framework_record():
+        # the Study-parameter framework's record (under a second), logged first; in the
+        # parallel case while the workers start
+        if not names:
+            status["study_algebra"] = study_algebra.write_record(root, force, log)
+        for line in current_lines:
+            log(line)
+
     seconds: dict[str, float] = {}
     needs = set(then[0]) if then is not None else set()
     failure: BaseException | None = None
     if jobs <= 1:
+        framework_record()
         for name in todo:
             line, seconds[name] = _derive_and_write(name, root, engine, progress)
             log(line)
@@ -212,6 +220,12 @@ def derive_all(root: Path, names: list[str] | None = None, force: bool = False,
             futures = {name: pool.submit(_derive_in_worker, name, root, engine,
                                          progress is not None)
                        for name in order}
+            try:
+                framework_record()
+            except BaseException:
+                for f in futures.values():  # the ones not started
+                    f.cancel()
+                raise
             if then is not None:
                 needed = [futures[n] for n in todo if n in needs]
                 wait(needed)
