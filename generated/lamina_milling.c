@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f55342891f53265680c15e386a82c30ddcfc1ecf83e41993bfc0426153df0f96
+ * Derivation hash: dd63da81f66b8bcce18e6cf16881fe936470df50c42031881f36f16a07c792c9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f55342891f53265680c15e386a82c30ddcfc1ecf83e41993bfc0426153df0f96";
+const char bonered_derivation_hash[] = "dd63da81f66b8bcce18e6cf16881fe936470df50c42031881f36f16a07c792c9";
 int bonered_abi(void) { return 3; }
 #endif
 

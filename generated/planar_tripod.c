@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d3510715a4da7093fb57c9de8d5bb1b73761ec324c8143f1900ee461c3c247b3
+ * Derivation hash: 6957e452b2fd6c487d7d2e24a6242abc07340c5d40e643a9ade18b06e02cfc90
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d3510715a4da7093fb57c9de8d5bb1b73761ec324c8143f1900ee461c3c247b3";
+const char bonered_derivation_hash[] = "6957e452b2fd6c487d7d2e24a6242abc07340c5d40e643a9ade18b06e02cfc90";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 99821b61f3ebc0ec57dc27cacefc10f4a471a926581da5d334af14a97e28dc14
+ * Derivation hash: 196713d09149bd0fb7f521271387ea8aad2592df8fa4df7d6bd09796bb6ee7cf
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "99821b61f3ebc0ec57dc27cacefc10f4a471a926581da5d334af14a97e28dc14";
+const char bonered_derivation_hash[] = "196713d09149bd0fb7f521271387ea8aad2592df8fa4df7d6bd09796bb6ee7cf";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3f56d2d6024a5e138b40f74b61105d68cba45c0db18dd2374f76281d84f60145
+ * Derivation hash: 634d0c82dbdc5511a109421a450da011bc80c25aad93c8371d1562f8470c2a6d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3f56d2d6024a5e138b40f74b61105d68cba45c0db18dd2374f76281d84f60145";
+const char bonered_derivation_hash[] = "634d0c82dbdc5511a109421a450da011bc80c25aad93c8371d1562f8470c2a6d";
 int bonered_abi(void) { return 3; }
 #endif
 

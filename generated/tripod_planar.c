@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fea09b040f46dc6f88f74729b4e06c7441650576b71b1a2cac2216a6502088fa
+ * Derivation hash: 150cec8af448fe8d646693c23f23b008ac5294c0d853c23022ee90ad7d137b59
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fea09b040f46dc6f88f74729b4e06c7441650576b71b1a2cac2216a6502088fa";
+const char bonered_derivation_hash[] = "150cec8af448fe8d646693c23f23b008ac5294c0d853c23022ee90ad7d137b59";
 int bonered_abi(void) { return 3; }
 #endif
 

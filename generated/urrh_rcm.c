@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a8f91bf1024cbbee1b86f620054d64ecda245f36068119274189dcd4b848fbac
+ * Derivation hash: 459860d246bead3d43c04145951e67063d32b4209814a2fa092f9fa3b8235760
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a8f91bf1024cbbee1b86f620054d64ecda245f36068119274189dcd4b848fbac";
+const char bonered_derivation_hash[] = "459860d246bead3d43c04145951e67063d32b4209814a2fa092f9fa3b8235760";
 int bonered_abi(void) { return 3; }
 #endif
 

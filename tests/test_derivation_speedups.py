@@ -215,3 +215,36 @@ def test_simplified_is_simplify_with_zero_taken_early():
     for e in other:
         assert sp.srepr(simplified(e)) == sp.srepr(sp.simplify(e))
         assert simplified(e) != 0
+
+
+def test_normal_form_is_the_primitive_polynomial_by_fraction_arithmetic():
+    """polyterms.normal_form (integer arithmetic on the numerators) equals the plain
+    Fraction computation: merged monomials, grevlex order descending, denominators
+    cleared, content removed, positive leading coefficient; on random term lists with
+    repeated monomials, zero sums, integer and rational coefficients."""
+    import math
+    import random
+    from fractions import Fraction
+
+    from bonered_alg.elimination.polyterms import grevlex_key, normal_form
+
+    def plain(terms):
+        merged = {}
+        for e, c in terms:
+            merged[tuple(e)] = merged.get(tuple(e), Fraction(0)) + Fraction(c)
+        items = sorted(((e, c) for e, c in merged.items() if c != 0),
+                       key=lambda t: grevlex_key(t[0]), reverse=True)
+        if not items:
+            return ()
+        den = math.lcm(*(c.denominator for _, c in items))
+        ints = [int(c * den) for _, c in items]
+        g = math.gcd(*ints) * (1 if ints[0] > 0 else -1)
+        return tuple((e, Fraction(i // g)) for (e, _), i in zip(items, ints))
+
+    rng = random.Random(3)
+    for _ in range(2000):
+        terms = [(tuple(rng.randint(0, 2) for _ in range(3)),
+                  rng.choice([rng.randint(-9, 9), Fraction(rng.randint(-9, 9), rng.randint(1, 7))]))
+                 for _ in range(rng.randint(0, 12))]
+        got = normal_form(terms)
+        assert got == plain(terms) and all(type(c) is Fraction for _, c in got)

@@ -35,16 +35,21 @@ def parse_rational(text: str) -> Fraction:
 
 
 def normal_form(terms: Iterable[Term]) -> PolyTerms:
-    """Primitive integer polynomial with positive grevlex-leading coefficient."""
+    """Primitive integer polynomial with positive grevlex-leading coefficient.  (Integer
+    arithmetic on numerators where the denominators are cleared: ``c * den`` is
+    ``numerator * (den // denominator)`` exactly; a Fraction is added only to a repeated
+    monomial.)"""
     merged: dict[Exponents, Fraction] = {}
     for e, c in terms:
-        merged[tuple(e)] = merged.get(tuple(e), Fraction(0)) + Fraction(c)
+        e = tuple(e)
+        c = c if type(c) is Fraction else Fraction(c)
+        merged[e] = merged[e] + c if e in merged else c
     items = sorted(((e, c) for e, c in merged.items() if c != 0), key=lambda t: grevlex_key(t[0]),
                    reverse=True)
     if not items:
         return ()
     den = math.lcm(*(c.denominator for _, c in items))
-    ints = [int(c * den) for _, c in items]
+    ints = [c.numerator * (den // c.denominator) for _, c in items]
     g = math.gcd(*ints)
     sign = 1 if ints[0] > 0 else -1
     return tuple((e, Fraction(sign * i // g)) for (e, _), i in zip(items, ints))
