@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 459860d246bead3d43c04145951e67063d32b4209814a2fa092f9fa3b8235760
+ * Derivation hash: 7ff2081d86999e22f4c00ed36502cce0b00f8dba6f6e0080c7346eabd9f73bfe
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "459860d246bead3d43c04145951e67063d32b4209814a2fa092f9fa3b8235760";
+const char bonered_derivation_hash[] = "7ff2081d86999e22f4c00ed36502cce0b00f8dba6f6e0080c7346eabd9f73bfe";
 int bonered_abi(void) { return 3; }
 #endif
 

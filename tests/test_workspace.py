@@ -623,14 +623,14 @@ def test_kept_workers_belong_to_the_process_that_started_them(monkeypatch):
     leaves the parent's alone (no process starts: a pool spawns its workers on first use)."""
     from bonered_alg.workspace import scan as scan_module
 
-    parent = scan_module._process_pool(3)
+    parent = scan_module.process_pool(3)
     real = os.getpid()
     monkeypatch.setattr(scan_module.os, "getpid", lambda: real + 1)
-    child = scan_module._process_pool(3)
-    assert child is not parent and scan_module._process_pool(3) is child
+    child = scan_module.process_pool(3)
+    assert child is not parent and scan_module.process_pool(3) is child
     scan_module.shutdown_pools()
     monkeypatch.setattr(scan_module.os, "getpid", lambda: real)
-    assert scan_module._process_pool(3) is parent
+    assert scan_module.process_pool(3) is parent
     scan_module.shutdown_pools()
     assert not scan_module._POOLS
 

@@ -15,6 +15,7 @@ import hashlib
 import io
 import json
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -508,6 +509,20 @@ def _tex(data: dict, figures: list[str]) -> str:
     return "\n".join(out) + "\n"
 
 
+def _drawn(jobs: list, workers: int | None) -> list[list[Path]]:
+    """Each figure job ``(plot function, arguments)`` run, its written paths in the jobs'
+    order: on the scans' worker processes where there are several (the figures are drawn
+    in parallel, each the same bytes: matplotlib's Agg and PDF backends, no dates), else
+    here."""
+    from ..workspace.scan import process_pool
+
+    workers = workers or os.cpu_count() or 1
+    if workers <= 1 or len(jobs) <= 1:
+        return [func(*args) for func, args in jobs]
+    pool = process_pool(workers)
+    return [f.result() for f in [pool.submit(func, *args) for func, args in jobs]]
+
+
 def write(root: Path, workers: int | None = None, force: bool = False,
           progress=None) -> list[Path]:
     """Compute and write the comparison unless it is up to date; returns written paths."""
@@ -516,14 +531,14 @@ def write(root: Path, workers: int | None = None, force: bool = False,
         return []
     data, scans = compute(workers, progress)
     figures = []
-    written = []
+    jobs = []  # (plot function, arguments), one per figure
     for kind, (a, b), title in (("xyg", ("y", "x"), "(x, y) over gamma, 000 Fig. 10"),
                                 ("xyg", ("gamma", "x"), "(x, gamma) over y, 000 Fig. 10"),
                                 ("abz", ("beta", "alpha"), "(alpha, beta) over z, 000 Fig. 11"),
                                 ("abz", ("z", "alpha"), "(alpha, z) over beta, 000 Fig. 11")):
         stem = ddir / f"bone_reduction_000_{kind}_{a}_{b}"
         res = [scans[f"planar_tripod/{kind}"], scans[f"stewart/{kind}"]]
-        written += overlay(res, a, b, title, stem)
+        jobs.append((overlay, (res, a, b, title, stem)))
         figures.append(stem.name + ".png")  # the PDFs are build products (.gitignore)
     for kind, (a, b), title in (("xyz", ("y", "x"), "(x, y) over z, 001 Fig. 9"),
                                 ("xyz", ("z", "x"), "(x, z) over y, 001 Fig. 9"),
@@ -537,19 +552,21 @@ def write(root: Path, workers: int | None = None, force: bool = False,
                                  "(alpha, gamma) over beta at the target, 001 Fig. 10b")):
         stem = ddir / f"bone_reduction_001_{kind}_{a}_{b}"
         res = [scans[f"001/tripod_planar/{kind}"], scans[f"001/stewart/{kind}"]]
-        written += overlay(res, a, b, title, stem)
+        jobs.append((overlay, (res, a, b, title, stem)))
         figures.append(stem.name + ".png")
     for name, (res, signs) in scans["singular_slices"].items():
         stem = ddir / f"bone_reduction_001_singular_{name}"
-        written += singular_slice(res, signs, f"tripod_planar: singularity loci, {name} slice "
-                                  "(001 Fig. 5 style)", stem)
+        jobs.append((singular_slice, (res, signs, f"tripod_planar: singularity loci, {name} "
+                                      "slice (001 Fig. 5 style)", stem)))
         figures.append(stem.name + ".png")
     path = scans["path_001"]
     stem = ddir / "bone_reduction_001_path"
     strokes = {label: ([(160.0, 320.0), (120.0, 325.0)] if "tripod" in label
                        else [(160.0, 320.0)]) for label in path["runs"]}
-    written += joint_paths(path["runs"], strokes, "001 Sect. 4.2 bone-reduction path", stem)
+    jobs.append((joint_paths, (path["runs"], strokes, "001 Sect. 4.2 bone-reduction path",
+                               stem)))
     figures.append(stem.name + ".png")
+    written = [p for paths in _drawn(jobs, workers) for p in paths]
     atomic_write_text(ddir / "bone_reduction_001_path.csv", _trajectory_csv(path))
     written.append(ddir / "bone_reduction_001_path.csv")
     text = json.dumps(data, indent=1, sort_keys=True) + "\n"

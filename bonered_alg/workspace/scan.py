@@ -167,7 +167,7 @@ _POOLS: dict[tuple[int, int], ProcessPoolExecutor] = {}  # (this process's id, w
 _POOLS_LOCK = threading.Lock()
 
 
-def _process_pool(workers: int) -> ProcessPoolExecutor:
+def process_pool(workers: int) -> ProcessPoolExecutor:
     """A pool of ``workers`` spawned processes, started on first use and kept (a broken one,
     e.g. after a worker was killed, is replaced).  Kept per process: a forked child starts
     its own and never touches its parent's."""
@@ -200,7 +200,7 @@ def _run_local(tasks, workers, progress, threads=False):
     if threads:
         return _run_threads(tasks, workers, progress)
     out, pending = [], set()
-    pool = _process_pool(workers)
+    pool = process_pool(workers)
     try:
         for t in tasks:
             pending.add(pool.submit(scan_chunk, *t))
