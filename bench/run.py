@@ -136,12 +136,15 @@ def derive_benchmarks():
     cmd = [sys.executable, "-m", "bonered_alg.cli", "derive"]
     t_noop = median_time(lambda: subprocess.run(cmd, cwd=ROOT, check=True,
                                                 capture_output=True), 3)
-    force, comparison, together = cold_derive_force()
+    rounds = cold_derive_force()
+    force, comparison, together = (statistics.median(r[k] for r in rounds) for k in range(3))
     return {"cold_one_process": per_mechanism,
             "cold_one_process_sum_s": sum(v["total_s"] for v in per_mechanism.values()),
+            "cold_rounds": [{"derive_force_s": a, "comparison_force_s": b,
+                             "derive_force_comparison_s": c} for a, b, c in rounds],
             "cold_derive_force_all_cores_s": force,
             "comparison_force_all_cores_s": comparison,
-            "derive_then_comparison_s": force + comparison,
+            "derive_then_comparison_s": statistics.median(a + b for a, b, _ in rounds),
             "make_derive_force_s": together,
             "derive_when_up_to_date_s": t_noop}
 
@@ -165,17 +168,21 @@ def _cold_run(args: list[str]) -> float:
         return time.perf_counter() - t0
 
 
-def cold_derive_force() -> tuple[float, float, float]:
-    """Wall seconds, each from a cold start (:func:`_cold_run`), of ``derive --force`` alone,
-    of the comparison study alone (``comparison --force``, its modules derived), and of
-    ``make derive-force``'s command, ``derive --force --comparison`` (the comparison
-    started once the three mechanisms it scans are derived, beside the others)."""
-    seconds = _cold_run(["derive", "--force"])
-    comparison = _cold_run(["comparison", "--force"])
-    together = _cold_run(["derive", "--force", "--comparison"])
-    print("cold derive --force on every core", seconds, "comparison --force", comparison,
-          "derive --force --comparison", together, flush=True)
-    return seconds, comparison, together
+def cold_derive_force(rounds: int = 2) -> list[tuple[float, float, float]]:
+    """Per round, wall seconds, each from a cold start (:func:`_cold_run`), of ``derive
+    --force`` alone, of the comparison study alone (``comparison --force``, its modules
+    derived), and of ``make derive-force``'s command, ``derive --force --comparison`` (the
+    comparison started once the three mechanisms it scans are derived, beside the others):
+    interleaved, as the host's speed drifts by tens of percent within minutes."""
+    out = []
+    for _ in range(rounds):
+        seconds = _cold_run(["derive", "--force"])
+        comparison = _cold_run(["comparison", "--force"])
+        together = _cold_run(["derive", "--force", "--comparison"])
+        print("cold derive --force on every core", seconds, "comparison --force", comparison,
+              "derive --force --comparison", together, flush=True)
+        out.append((seconds, comparison, together))
+    return out
 
 
 def reachable_poses(n, rng):
