@@ -225,6 +225,7 @@ def main(argv: list[str] | None = None) -> int:
             from .studies.comparison_report import MECHANISMS
 
             root = args.root.resolve()
+
             def comparison() -> None:
                 try:
                     _comparison(root, None, args.force, args.quiet)

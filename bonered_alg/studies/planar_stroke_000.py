@@ -120,7 +120,8 @@ def _error_bound(narrow: dict[str, float] | None, wide: dict[str, float]) -> flo
     smaller :func:`_error`: per range, the term of the end nearest the target (0 where the
     target lies between), summed in ``_error``'s order.  Exact in floating point:
     ``((r - T) / T) ** 2`` does not decrease as ``|r - T|`` grows (subtraction, division
-    and squaring are correctly rounded, hence monotone), nor does the sum in each term."""
+    and squaring are correctly rounded, hence monotone), and a sum does not decrease as
+    any of its terms grows."""
     total = 0.0
     for k in TARGET:
         lo, hi = (narrow[k] if narrow is not None else 0.0), wide[k]
