@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dd63da81f66b8bcce18e6cf16881fe936470df50c42031881f36f16a07c792c9
+ * Derivation hash: 593382a53d2325301110bf41e1c72501dddef1f1bde040489812848489d0282f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "dd63da81f66b8bcce18e6cf16881fe936470df50c42031881f36f16a07c792c9";
+const char bonered_derivation_hash[] = "593382a53d2325301110bf41e1c72501dddef1f1bde040489812848489d0282f";
 int bonered_abi(void) { return 3; }
 #endif
 

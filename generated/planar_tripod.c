@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6957e452b2fd6c487d7d2e24a6242abc07340c5d40e643a9ade18b06e02cfc90
+ * Derivation hash: 7f71c44036f871c4fb045b06b85cc64b80b91602aa522997ea708630241147bd
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6957e452b2fd6c487d7d2e24a6242abc07340c5d40e643a9ade18b06e02cfc90";
+const char bonered_derivation_hash[] = "7f71c44036f871c4fb045b06b85cc64b80b91602aa522997ea708630241147bd";
 int bonered_abi(void) { return 3; }
 #endif
 

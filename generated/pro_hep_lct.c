@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 196713d09149bd0fb7f521271387ea8aad2592df8fa4df7d6bd09796bb6ee7cf
+ * Derivation hash: f85e46f170bcc1d889cd5e65775945e34e8ccc80167b44b4ebb9d2fe43bcbf40
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "196713d09149bd0fb7f521271387ea8aad2592df8fa4df7d6bd09796bb6ee7cf";
+const char bonered_derivation_hash[] = "f85e46f170bcc1d889cd5e65775945e34e8ccc80167b44b4ebb9d2fe43bcbf40";
 int bonered_abi(void) { return 3; }
 #endif
 

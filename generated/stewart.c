@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 634d0c82dbdc5511a109421a450da011bc80c25aad93c8371d1562f8470c2a6d
+ * Derivation hash: 6e98326bb64dfa4be65db986e86903908f5207b76b7236b19d7fa46c9d809368
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "634d0c82dbdc5511a109421a450da011bc80c25aad93c8371d1562f8470c2a6d";
+const char bonered_derivation_hash[] = "6e98326bb64dfa4be65db986e86903908f5207b76b7236b19d7fa46c9d809368";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 150cec8af448fe8d646693c23f23b008ac5294c0d853c23022ee90ad7d137b59
+ * Derivation hash: df4817613b636b25af716a5117a0c13f8170be0625583cd5d6f3564fe1e98ca5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "150cec8af448fe8d646693c23f23b008ac5294c0d853c23022ee90ad7d137b59";
+const char bonered_derivation_hash[] = "df4817613b636b25af716a5117a0c13f8170be0625583cd5d6f3564fe1e98ca5";
 int bonered_abi(void) { return 3; }
 #endif
 

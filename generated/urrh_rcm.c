@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7ff2081d86999e22f4c00ed36502cce0b00f8dba6f6e0080c7346eabd9f73bfe
+ * Derivation hash: 141bfe770e6fe16dd64cf3d8e78834af829af99e14013c5731117917e62c8780
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7ff2081d86999e22f4c00ed36502cce0b00f8dba6f6e0080c7346eabd9f73bfe";
+const char bonered_derivation_hash[] = "141bfe770e6fe16dd64cf3d8e78834af829af99e14013c5731117917e62c8780";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -114,17 +114,23 @@ def test_argument_errors_name_the_mechanism_and_what_was_expected():
 def test_plain_scalar_parameters_are_checked_as_arrays_are():
     """The float comparisons for plain scalars (check.parameters' shortcut) give the array
     checks' values and reject what they reject; the checked defaults, kept per model, come
-    back as a fresh list each call."""
+    back as a fresh list each call.  A scalar, by either path, is a numpy.float64 (numpy's
+    arithmetic: infinity, not ZeroDivisionError, where a kernel divides by a parameter
+    difference that is zero)."""
     from bonered_alg.runtime import inputs
 
     m = toy_model(parameters={"k": 1.0, "r": 2.0, "n": 0.0},
                   parameter_units={"k": "mm", "r": "mm", "n": "mm"},
                   parameter_notes={"k": "a", "r": "b", "n": "c"},
                   parameter_domains={"r": "positive", "n": "nonnegative"})
-    for value in (3, 3.5, np.float64(-2.25), 2**53 + 1, 1e-300):
+    for value in (3, 3.5, np.float64(-2.25), 2**53 + 1, 1e-300, np.array(3.5),
+                  np.float32(0.1), np.int64(-7)):
         got = inputs.parameters(m, "f", {"k": value})[0]
-        assert isinstance(got, np.ndarray) and got.ndim == 0 and got.dtype == float
+        assert type(got) is np.float64 and got.ndim == 0
         assert got == np.asarray(value).astype(float)
+    zero = inputs.parameters(m, "f", {"k": 2.0, "n": 2})
+    with np.errstate(divide="ignore"):
+        assert zero[0] / (zero[0] - zero[2]) == np.inf
     bad = [({"r": 0.0}, ValueError, "'r' must be > 0"), ({"r": -1}, ValueError, "'r' must be > 0"),
            ({"n": -1e-300}, ValueError, "'n' must be >= 0"),
            ({"k": float("nan")}, ValueError, "'k' is not finite"),

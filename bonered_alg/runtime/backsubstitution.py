@@ -51,8 +51,9 @@ def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=Fa
     out = numpy.empty((n_out,) + shape)
     records = [] if with_status else None
     with numpy.errstate(all="ignore"):
-        good = _roots(cols, steps, indices, out, mode, par, records)
-        failed = ~good if good is not None else numpy.zeros(shape, dtype=bool)
+        failed = _roots(cols, steps, indices, out, mode, par, records)
+        if failed is None:
+            failed = numpy.zeros(shape, dtype=bool)
         status = None
         if with_status:  # from each step's root before the rows are set to NaN
             status = _lean_status(inputs, shape, failed, [out[i, ...] for i in indices],
@@ -63,26 +64,31 @@ def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=Fa
 
 
 def _roots(cols, steps, indices, out, mode, par, records=None):
-    """Each step's root written into its row of ``out`` (n_out, ...) in place; True where
-    every root is finite (None without steps).  A step that fails gives NaN or infinity
-    (no real root: the discriminant set to NaN below its tolerance), and the later steps
-    take that on; the roots of valid configurations are the general rule's, operation for
-    operation.  ``records`` (a list) receives what the status needs of each step."""
+    """Each step's root written into its row of ``out`` (n_out, ...) in place; returns
+    where some root is not finite (None where every root is).  A step that fails gives NaN
+    or infinity (no real root: the discriminant set to NaN below its tolerance), and the
+    later steps take that on; the roots of valid configurations are the general rule's,
+    operation for operation.  ``records`` (a list) receives what the status needs of each
+    step."""
     solved = []
-    good = None
     for (degree, kern, bit), index in zip(steps, indices):
         a, b, c = kern(*cols, *solved, *par)
         dest = out[index, ...]
         record = _step_root(degree, a, b, c, degree == 2 and (mode >> bit) & 1, dest)
-        finite = numpy.isfinite(dest)
-        if good is None:
-            good = finite
-        else:
-            good &= finite
         solved.append(dest)
         if records is not None:
             records.append(record)
-    return good
+    if not solved:
+        return None
+    # one sum instead of a finiteness test per root: a sum of finite numbers is finite
+    # unless it overflows, and a sum with a NaN or an infinity is not (where it is not
+    # finite, the roots are tested one by one)
+    if numpy.isfinite(numpy.add.reduce(out, axis=None)):
+        return None
+    failed = ~numpy.isfinite(solved[0])
+    for dest in solved[1:]:
+        failed |= ~numpy.isfinite(dest)
+    return failed
 
 
 def _step_root(degree, a, b, c, minus, dest):
@@ -100,24 +106,28 @@ def _step_root(degree, a, b, c, minus, dest):
         return ("pure", disc)
     bb = b * b
     disc = bb - 4.0 * a * c
-    no_real = disc < -DISC_RTOL * bb
-    # sqrt(max(disc, 0)), NaN where no real root: there max(disc, 0) is 0, and subtracting
-    # True makes it -1 (numpy.where and masked copies cost several arithmetic passes each)
-    ssq = numpy.maximum(disc, 0.0) - no_real
+    # sqrt(disc) where every discriminant is >= 0 (the sum of the square roots is then
+    # finite: one reduction tells), else sqrt(max(disc, 0)) with NaN where no real root:
+    # there max(disc, 0) is 0, and subtracting True makes it -1 (numpy.where and masked
+    # copies cost several arithmetic passes each).  The same numbers either way
+    sq = numpy.sqrt(disc)
+    if not numpy.isfinite(numpy.add.reduce(sq, axis=None)):
+        no_real = disc < -DISC_RTOL * bb
+        sq = numpy.sqrt(numpy.maximum(disc, 0.0) - no_real)
     # s = |B| + sqrt(disc) never cancels: the root with +sqrt is s / 2A where B <= 0 and
     # 2C / -s where B > 0; the one with -sqrt, -s / 2A where B >= 0 and 2C / s where B < 0
     # -- the detailed form's (+-sqrt - B) / 2A and 2C / (-B -+ sqrt), the same numbers (a
     # zero root may differ in its sign).  Written as s / -2A for -s / 2A and -2C / s for
     # 2C / -s (the same numbers: IEEE negation and division are sign-symmetric), the
-    # other branch's value copied over where it applies: two array passes fewer than a
-    # negation and numpy.where into a new array
-    s = numpy.abs(b) + numpy.sqrt(ssq)
+    # other branch's value divided into ``dest`` where it applies (no temporary array)
+    s = numpy.abs(b)
+    s += sq
     if minus:
         numpy.divide(s, -2.0 * a, out=dest)
-        numpy.copyto(dest, (2.0 * c) / s, where=b < 0.0)
+        numpy.divide(2.0 * c, s, out=dest, where=b < 0.0)
     else:
         numpy.divide(s, 2.0 * a, out=dest)
-        numpy.copyto(dest, (-2.0 * c) / s, where=b > 0.0)
+        numpy.divide(-2.0 * c, s, out=dest, where=b > 0.0)
     return ("quadratic", disc, bb)
 
 
