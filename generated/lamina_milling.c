@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 593382a53d2325301110bf41e1c72501dddef1f1bde040489812848489d0282f
+ * Derivation hash: 249536e87b8f8a7b288401b387befd9b006f57c9047d8618e3067e972e0d196c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "593382a53d2325301110bf41e1c72501dddef1f1bde040489812848489d0282f";
+const char bonered_derivation_hash[] = "249536e87b8f8a7b288401b387befd9b006f57c9047d8618e3067e972e0d196c";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7f71c44036f871c4fb045b06b85cc64b80b91602aa522997ea708630241147bd
+ * Derivation hash: 69daec8189d2c7f92d860907252730f53f5f25c520f00ea8a0be8097c1991e26
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7f71c44036f871c4fb045b06b85cc64b80b91602aa522997ea708630241147bd";
+const char bonered_derivation_hash[] = "69daec8189d2c7f92d860907252730f53f5f25c520f00ea8a0be8097c1991e26";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f85e46f170bcc1d889cd5e65775945e34e8ccc80167b44b4ebb9d2fe43bcbf40
+ * Derivation hash: d409c4e8238781534c7ee7da827f44079ffd0380c9bbafb369b5f83d808b42d3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f85e46f170bcc1d889cd5e65775945e34e8ccc80167b44b4ebb9d2fe43bcbf40";
+const char bonered_derivation_hash[] = "d409c4e8238781534c7ee7da827f44079ffd0380c9bbafb369b5f83d808b42d3";
 int bonered_abi(void) { return 3; }
 #endif
 

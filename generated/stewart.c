@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6e98326bb64dfa4be65db986e86903908f5207b76b7236b19d7fa46c9d809368
+ * Derivation hash: 3d14c9c17016c7ddd5f1763a9cc43093295d15d231e207c794754f0811ce1532
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6e98326bb64dfa4be65db986e86903908f5207b76b7236b19d7fa46c9d809368";
+const char bonered_derivation_hash[] = "3d14c9c17016c7ddd5f1763a9cc43093295d15d231e207c794754f0811ce1532";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: df4817613b636b25af716a5117a0c13f8170be0625583cd5d6f3564fe1e98ca5
+ * Derivation hash: 54dda6ac71c2fc387297b59b6a09e7e7f208f50946c6df4cd19d6325bea56011
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "df4817613b636b25af716a5117a0c13f8170be0625583cd5d6f3564fe1e98ca5";
+const char bonered_derivation_hash[] = "54dda6ac71c2fc387297b59b6a09e7e7f208f50946c6df4cd19d6325bea56011";
 int bonered_abi(void) { return 3; }
 #endif
 

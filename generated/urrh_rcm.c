@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 141bfe770e6fe16dd64cf3d8e78834af829af99e14013c5731117917e62c8780
+ * Derivation hash: c75eb2930f36593a06887a3e3fb3a438f30aa41d5f23381a76753b79bf662301
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "141bfe770e6fe16dd64cf3d8e78834af829af99e14013c5731117917e62c8780";
+const char bonered_derivation_hash[] = "c75eb2930f36593a06887a3e3fb3a438f30aa41d5f23381a76753b79bf662301";
 int bonered_abi(void) { return 3; }
 #endif
 

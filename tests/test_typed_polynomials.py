@@ -343,3 +343,33 @@ def test_count_ops_is_sympys():
                      for _ in range(rng.randint(1, 30))])
         assert pr.count_ops(e) == int(sp.count_ops(e)), e
     assert pr.count_ops(sp.Eq(xs[0], xs[1] + 1)) == int(sp.count_ops(sp.Eq(xs[0], xs[1] + 1)))
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_reduced_numerator_is_cancels_numerator(seed):
+    """The fraction-field numerator (pr.reduced_numerator, behind the 3-RPS distance
+    conditions) against sympy's cancel: the same polynomial up to a non-zero rational
+    factor, and the same one where every coefficient is an integer (the conditions' case:
+    the same generator order and the same cancellation, so the same normalisation)."""
+    rng = random.Random(seed)
+    a, b, c, u, v = S[:5]
+    integer = seed % 2 == 0
+
+    def poly(vars_, n):
+        terms = _random_terms(rng, n, len(vars_))
+        if integer:
+            terms = {e: Fraction(int(k.numerator)) for e, k in terms.items()}
+        return _plain(terms, vars_)
+
+    cu, cv = (1 - u**2) / (1 + u**2), (1 - v**2) / (1 + v**2)
+    su, sv = 2 * u / (1 + u**2), 2 * v / (1 + v**2)
+    expr = ((poly((a, b), 3) * cu - poly((b, c), 2) * cv) ** 2
+            + (poly((a, c), 2) * su - sv * b) ** 2 - poly((a, b, c), 4))
+    if seed % 3 == 0:
+        expr += poly((a, u), 3) / (a + 2 * b + 1)  # a denominator that does not cancel
+    reference = sp.fraction(sp.cancel(sp.together(expr)))[0]
+    got = pr.reduced_numerator(expr)
+    ratio = sp.cancel(got / reference)
+    assert ratio.is_Rational and ratio != 0
+    if integer:
+        assert sp.expand(got - reference) == 0

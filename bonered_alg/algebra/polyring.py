@@ -43,6 +43,17 @@ def fraction(ring: PolyRing, expr) -> tuple[PolyElement, PolyElement]:
     return polynomial(ring, num), polynomial(ring, den)
 
 
+def reduced_numerator(expr) -> sp.Expr:
+    """The numerator of ``expr`` written as one reduced fraction: the numerator of
+    ``sp.cancel(sp.together(expr))``, up to a constant factor, formed in the fraction field
+    Z(symbols) (generators in ``sp.cancel``'s order), where each sum and product is cancelled
+    as it is built instead of the whole expression being expanded at once (tripod_planar's
+    3-RPS distance conditions: 1.36 s with ``cancel``, 0.13 s here, the same numerators)."""
+    expr = sp.sympify(expr)
+    field, *_ = sp.field(_sort_gens(expr.free_symbols), sp.ZZ)
+    return field.from_expr(expr).numer.as_expr()
+
+
 def lcm(polys: Sequence[PolyElement]) -> PolyElement:
     """Least common multiple (monic over Q) of non-zero polynomials."""
     return reduce(lambda a, b: a.lcm(b), polys, polys[0].ring.one)

@@ -82,8 +82,7 @@ def _reduce_constants(expr: sp.Expr, mech) -> sp.Expr:
 
 def _clear(expr: sp.Expr, mech, ui: sp.Symbol, uj: sp.Symbol) -> sp.Expr:
     """Numerator of ``expr`` free of the factors ``1 + u^2`` (no real zeros) and of content."""
-    num, _ = sp.fraction(sp.cancel(sp.together(expr)))
-    num = _reduce_constants(num, mech)
+    num = _reduce_constants(pr.reduced_numerator(expr), mech)
     for u in (ui, uj):
         while True:
             quo, rem = sp.div(num, u**2 + 1, u)
