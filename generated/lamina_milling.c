@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 249536e87b8f8a7b288401b387befd9b006f57c9047d8618e3067e972e0d196c
+ * Derivation hash: ac1477aad4f73c9a4acaa9db3ee5db0dca8a20bb00bf7c2ecb99c415ea12c661
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "249536e87b8f8a7b288401b387befd9b006f57c9047d8618e3067e972e0d196c";
+const char bonered_derivation_hash[] = "ac1477aad4f73c9a4acaa9db3ee5db0dca8a20bb00bf7c2ecb99c415ea12c661";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 69daec8189d2c7f92d860907252730f53f5f25c520f00ea8a0be8097c1991e26
+ * Derivation hash: f7ee6d5f4a828404ea84a96ddd8263e0d7710276c86985fba496d1d5c2a496f6
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "69daec8189d2c7f92d860907252730f53f5f25c520f00ea8a0be8097c1991e26";
+const char bonered_derivation_hash[] = "f7ee6d5f4a828404ea84a96ddd8263e0d7710276c86985fba496d1d5c2a496f6";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d409c4e8238781534c7ee7da827f44079ffd0380c9bbafb369b5f83d808b42d3
+ * Derivation hash: 555e64245449efbca23dc0d20841cb74e6224cb4075cd22191709df624285d6c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d409c4e8238781534c7ee7da827f44079ffd0380c9bbafb369b5f83d808b42d3";
+const char bonered_derivation_hash[] = "555e64245449efbca23dc0d20841cb74e6224cb4075cd22191709df624285d6c";
 int bonered_abi(void) { return 3; }
 #endif
 

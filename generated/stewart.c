@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3d14c9c17016c7ddd5f1763a9cc43093295d15d231e207c794754f0811ce1532
+ * Derivation hash: 91847d5aa6c916eb2bac4de8cd76a32ffa796f2de53b2e0bece660f42174d707
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3d14c9c17016c7ddd5f1763a9cc43093295d15d231e207c794754f0811ce1532";
+const char bonered_derivation_hash[] = "91847d5aa6c916eb2bac4de8cd76a32ffa796f2de53b2e0bece660f42174d707";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 54dda6ac71c2fc387297b59b6a09e7e7f208f50946c6df4cd19d6325bea56011
+ * Derivation hash: 360fbc57d169ad95159f8d3ce3ee9a30103259304146fe7c1b5894e13d419d34
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "54dda6ac71c2fc387297b59b6a09e7e7f208f50946c6df4cd19d6325bea56011";
+const char bonered_derivation_hash[] = "360fbc57d169ad95159f8d3ce3ee9a30103259304146fe7c1b5894e13d419d34";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c75eb2930f36593a06887a3e3fb3a438f30aa41d5f23381a76753b79bf662301
+ * Derivation hash: 71b6ece100f2fa6ac6a34102471cd148a10702b97cf35dc426b037c78c06b1d5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c75eb2930f36593a06887a3e3fb3a438f30aa41d5f23381a76753b79bf662301";
+const char bonered_derivation_hash[] = "71b6ece100f2fa6ac6a34102471cd148a10702b97cf35dc426b037c78c06b1d5";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -289,6 +289,12 @@ def test_factor_list_as_sympy_is_sympys_factor_list(seed):
     for other in (sp.Mul(*parts[:2]) if len(parts) > 1 else S[2] ** 2, sp.Integer(6),
                   sp.expand((sp.sqrt(3) * S[0] + S[1]) * (S[0] - 2 * S[2]))):
         assert pr.factor_list_as_sympy(other) == sp.factor_list(other)
+    # pr.factor is sympy.factor, to the srepr, on what the IK plans factor (sums of at most
+    # 40 terms: sympy takes tens of seconds on some of the larger products here)
+    small = [expr] if len(sp.Add.make_args(expr)) <= 40 else []
+    for e in small + [sp.Integer(6), S[2], sp.expand((S[0] + 2 * S[1]) * (S[2] - S[3]) / 7),
+                      sp.expand((sp.sqrt(3) * S[0] + S[1]) * (S[0] - 2 * S[2]))]:
+        assert sp.srepr(pr.factor(e)) == sp.srepr(sp.factor(e))
 
 
 @pytest.mark.parametrize("seed", range(25))

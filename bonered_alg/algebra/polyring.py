@@ -368,12 +368,33 @@ def factor_list_as_sympy(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, in
     generators, their number, the multiplicity, the representation).  Anything else (a
     denominator with symbols, a power that is not a positive integer, a function) goes to
     sympy itself."""
-    from sympy.polys.polytools import _sorted_factors
+    return _flint_factor_list(sp.sympify(expr)) or sp.factor_list(expr)
+
+
+def factor(expr: sp.Expr) -> sp.Expr:
+    """``sympy.factor(expr)`` of a polynomial, from :func:`factor_list_as_sympy`'s FLINT
+    factors where it uses them (the constant kept as ``sympy.factor`` keeps it, times the
+    product of the factors' powers); anything else by ``sympy.factor`` itself.  The same
+    expression (``tests/test_typed_polynomials.py`` compares their srepr): IK plans factor
+    their coefficients of up to 40 terms, 171 of them over the six mechanisms, in 0.7 s
+    against 1.1 s."""
+    from sympy.core.mul import _keep_coeff
 
     expr = sp.sympify(expr)
+    found = _flint_factor_list(expr)
+    if found is None:
+        return sp.factor(expr)
+    constant, factors = found
+    return _keep_coeff(sp.sympify(constant), sp.Mul(*[f**k for f, k in factors]))
+
+
+def _flint_factor_list(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, int]]] | None:
+    """:func:`factor_list_as_sympy` where FLINT factors; None where it goes to sympy."""
+    from sympy.polys.polytools import _sorted_factors
+
     numer, denom = sp.together(expr).as_numer_denom()
     if not denom.is_Number:
-        return sp.factor_list(expr)
+        return None
     constant = sp.S.One / denom
     merged: dict[sp.Poly, int] = {}
     for arg in sp.Mul.make_args(numer):
@@ -382,10 +403,10 @@ def factor_list_as_sympy(expr: sp.Expr) -> tuple[sp.Expr, list[tuple[sp.Expr, in
             continue
         base, k = (arg.base, arg.exp) if arg.is_Pow else (arg, sp.S.One)
         if not (k.is_Integer and k > 0) or not (base.is_Symbol or base.is_Add):
-            return sp.factor_list(expr)
+            return None
         gens = tuple(_sort_gens(base.free_symbols))
         if base.is_Add and terms_of(base, gens) is None:  # sympy's generators differ
-            return sp.factor_list(expr)  # (sqrt(3) would be one): its own order
+            return None  # (sqrt(3) would be one): its own order
         c, factors = factor_list(base) if base.is_Add else (sp.S.One, [(base, 1)])
         constant *= c ** k
         for f, m in factors:

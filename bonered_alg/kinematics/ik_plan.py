@@ -162,7 +162,7 @@ def _compact(c: sp.Expr, max_terms: int = 40) -> sp.Expr:
     """Factored when small (readable reports, fewer operations); large coefficients are left
     expanded: multivariate factorization (Wang's algorithm) can take minutes on them."""
     c = pr.expanded(c)  # sp.expand's result, without its pass over a sum of monomials
-    return sp.factor(c) if len(sp.Add.make_args(c)) <= max_terms else c
+    return pr.factor(c) if len(sp.Add.make_args(c)) <= max_terms else c
 
 
 def _definite(a: sp.Expr) -> bool:
