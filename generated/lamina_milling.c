@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ac1477aad4f73c9a4acaa9db3ee5db0dca8a20bb00bf7c2ecb99c415ea12c661
+ * Derivation hash: f27026807d694b4b4ac398e48bd0b332bf381661f6946b1525257c49ffb37d21
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ac1477aad4f73c9a4acaa9db3ee5db0dca8a20bb00bf7c2ecb99c415ea12c661";
+const char bonered_derivation_hash[] = "f27026807d694b4b4ac398e48bd0b332bf381661f6946b1525257c49ffb37d21";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f7ee6d5f4a828404ea84a96ddd8263e0d7710276c86985fba496d1d5c2a496f6
+ * Derivation hash: 92eb0dc5b61f5b2e2799da26b65b7992996eaeb224afbe6117c31496b0a387b7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f7ee6d5f4a828404ea84a96ddd8263e0d7710276c86985fba496d1d5c2a496f6";
+const char bonered_derivation_hash[] = "92eb0dc5b61f5b2e2799da26b65b7992996eaeb224afbe6117c31496b0a387b7";
 int bonered_abi(void) { return 3; }
 #endif
 

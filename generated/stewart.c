@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 91847d5aa6c916eb2bac4de8cd76a32ffa796f2de53b2e0bece660f42174d707
+ * Derivation hash: d7b2db328b7a73253d021c293916906a228056ffdc79467fd88014738eb88cdc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "91847d5aa6c916eb2bac4de8cd76a32ffa796f2de53b2e0bece660f42174d707";
+const char bonered_derivation_hash[] = "d7b2db328b7a73253d021c293916906a228056ffdc79467fd88014738eb88cdc";
 int bonered_abi(void) { return 3; }
 #endif
 

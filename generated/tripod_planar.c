@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 360fbc57d169ad95159f8d3ce3ee9a30103259304146fe7c1b5894e13d419d34
+ * Derivation hash: 7a1e88eda26298fca408fc588c1300211b49378da3b5b5651444678ef815fdb9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "360fbc57d169ad95159f8d3ce3ee9a30103259304146fe7c1b5894e13d419d34";
+const char bonered_derivation_hash[] = "7a1e88eda26298fca408fc588c1300211b49378da3b5b5651444678ef815fdb9";
 int bonered_abi(void) { return 3; }
 #endif
 

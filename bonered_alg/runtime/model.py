@@ -514,9 +514,10 @@ class Model:
                 for k, v in enumerate(values):
                     if into is not None and k >= nps:
                         row = (k - nps) // len(self.pose)
-                        if row_scale and row in row_scale:
-                            v = v * row_scale[row][lo:hi]
-                        into[lo:hi, k - nps] = v
+                        if row_scale and row in row_scale:  # the product written in place
+                            numpy.multiply(v, row_scale[row][lo:hi], out=into[lo:hi, k - nps])
+                        else:
+                            into[lo:hi, k - nps] = v
                     else:
                         out[k, lo:hi] = v
         if out is None:  # no poses
@@ -528,10 +529,10 @@ class Model:
     def pivot_singular(pivots, scales, shape):
         """True where a pivot dG_k/dq_k vanishes relative to its row scale (or is not
         finite): an input singularity."""
-        singular = numpy.zeros(shape, dtype=bool)
+        regular = numpy.ones(shape, dtype=bool)
         for d, sc in zip(pivots, scales):
-            singular |= ~(numpy.abs(d) > DET_RTOL * sc)
-        return singular
+            regular &= numpy.abs(d) > DET_RTOL * sc
+        return ~regular
 
     def jacobian_and_status(self, pose, mode=0, limits=True, params=None,
                             func="jacobian_and_status", fast=None):
