@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f27026807d694b4b4ac398e48bd0b332bf381661f6946b1525257c49ffb37d21
+ * Derivation hash: 7fdb7ffb06a243cf62fc09ea49379c4b75cc339f3231a115d95bcfde63f99d8e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f27026807d694b4b4ac398e48bd0b332bf381661f6946b1525257c49ffb37d21";
+const char bonered_derivation_hash[] = "7fdb7ffb06a243cf62fc09ea49379c4b75cc339f3231a115d95bcfde63f99d8e";
 int bonered_abi(void) { return 3; }
 #endif
 

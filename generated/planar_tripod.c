@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 92eb0dc5b61f5b2e2799da26b65b7992996eaeb224afbe6117c31496b0a387b7
+ * Derivation hash: 2d0678e4ed2aceb017d6d773a9c627f6fb7783b399258885307fbb6968c7defd
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "92eb0dc5b61f5b2e2799da26b65b7992996eaeb224afbe6117c31496b0a387b7";
+const char bonered_derivation_hash[] = "2d0678e4ed2aceb017d6d773a9c627f6fb7783b399258885307fbb6968c7defd";
 int bonered_abi(void) { return 3; }
 #endif
 

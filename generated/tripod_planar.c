@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7a1e88eda26298fca408fc588c1300211b49378da3b5b5651444678ef815fdb9
+ * Derivation hash: 3fb9fdbc1704ae37da0a76cc9ca6def3509dc62146e5ac82599fe4f65e33146b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7a1e88eda26298fca408fc588c1300211b49378da3b5b5651444678ef815fdb9";
+const char bonered_derivation_hash[] = "3fb9fdbc1704ae37da0a76cc9ca6def3509dc62146e5ac82599fe4f65e33146b";
 int bonered_abi(void) { return 3; }
 #endif
 

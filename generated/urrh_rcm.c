@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5e52ba17f5bf6a99fc541cbf22b78c88dd0e70a78e6f9574beb8adfa218260f6
+ * Derivation hash: 1bebfcfc00093f6078ec5e2c3ec00dc534e914d0e36f198977fcce8b60d0ad55
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5e52ba17f5bf6a99fc541cbf22b78c88dd0e70a78e6f9574beb8adfa218260f6";
+const char bonered_derivation_hash[] = "1bebfcfc00093f6078ec5e2c3ec00dc534e914d0e36f198977fcce8b60d0ad55";
 int bonered_abi(void) { return 3; }
 #endif
 

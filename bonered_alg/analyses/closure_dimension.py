@@ -53,7 +53,8 @@ class ClosureDimension:
         mech = d.mechanism
         closure = mech.closure(self.closure)
         values = {p.symbol: exact(p.value) for p in mech.parameters}
-        eqs = tuple(dict.fromkeys(e for e in (sp.expand(g.subs(values))
+        # numbers for symbols: xreplace gives subs's expression once expanded (solution_counts)
+        eqs = tuple(dict.fromkeys(e for e in (sp.expand(g.xreplace(values))
                                               for g in d.closure_generators(self.closure))
                                   if e != 0))
         used = set().union(*(e.free_symbols for e in eqs))

@@ -42,7 +42,11 @@ class SolutionCounts:
         gens = d.closure_generators(self.closure)
         out = {}
         for label, values in self.configurations.items():
-            eqs = tuple(dict.fromkeys(e for e in (sp.expand(g.subs(values)) for g in gens)
+            # symbols replaced by numbers: xreplace gives subs's expression once expanded
+            # (the same srepr on all 188 calls of this analysis and closure_dimension over the
+            # six derivations, 0.34 s against 1.70 s)
+            values = {k: sp.sympify(v) for k, v in values.items()}
+            eqs = tuple(dict.fromkeys(e for e in (sp.expand(g.xreplace(values)) for g in gens)
                                       if e != 0))
             problem = ParametricProblem(f"mechanism {mech.name!r}: ideal of the "
                                         f"{closure.name} at {label}", eqs, unknowns, ())
