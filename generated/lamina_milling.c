@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7fdb7ffb06a243cf62fc09ea49379c4b75cc339f3231a115d95bcfde63f99d8e
+ * Derivation hash: e5d07ed88633f35a3e70bc19f800bc9c629073bbdd904d7fb19b851bc76265fc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7fdb7ffb06a243cf62fc09ea49379c4b75cc339f3231a115d95bcfde63f99d8e";
+const char bonered_derivation_hash[] = "e5d07ed88633f35a3e70bc19f800bc9c629073bbdd904d7fb19b851bc76265fc";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2d0678e4ed2aceb017d6d773a9c627f6fb7783b399258885307fbb6968c7defd
+ * Derivation hash: e84028fae64eadc03aec0000705aecae3e3af76bfcc3186825b3bc4b421f00c9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2d0678e4ed2aceb017d6d773a9c627f6fb7783b399258885307fbb6968c7defd";
+const char bonered_derivation_hash[] = "e84028fae64eadc03aec0000705aecae3e3af76bfcc3186825b3bc4b421f00c9";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0af2cdf3756030ef563d9770a3692850d520229d4a4234435127f582a237d3a5
+ * Derivation hash: bbdd498dfb7a2f9f80ef8ad00e8834097e05bc98815a0bee79585659d6ceb195
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0af2cdf3756030ef563d9770a3692850d520229d4a4234435127f582a237d3a5";
+const char bonered_derivation_hash[] = "bbdd498dfb7a2f9f80ef8ad00e8834097e05bc98815a0bee79585659d6ceb195";
 int bonered_abi(void) { return 3; }
 #endif
 

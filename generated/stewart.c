@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7ab60f6e731b842464b5d8ed8f7017696f8796999cafb576d900c44a07998005
+ * Derivation hash: f999bdddffb81d860d8e158c6aec73ea6d0d74f5912684a91fd4260f28717c28
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7ab60f6e731b842464b5d8ed8f7017696f8796999cafb576d900c44a07998005";
+const char bonered_derivation_hash[] = "f999bdddffb81d860d8e158c6aec73ea6d0d74f5912684a91fd4260f28717c28";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3fb9fdbc1704ae37da0a76cc9ca6def3509dc62146e5ac82599fe4f65e33146b
+ * Derivation hash: 04de090fd5799652a23e16bd4f3659d23b3a788ed130297040e09046d88f60d3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3fb9fdbc1704ae37da0a76cc9ca6def3509dc62146e5ac82599fe4f65e33146b";
+const char bonered_derivation_hash[] = "04de090fd5799652a23e16bd4f3659d23b3a788ed130297040e09046d88f60d3";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1bebfcfc00093f6078ec5e2c3ec00dc534e914d0e36f198977fcce8b60d0ad55
+ * Derivation hash: 5b08b88272c7f304164f2323c2639bfbb27b3c2a0579ccb202b710c8f468a78d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1bebfcfc00093f6078ec5e2c3ec00dc534e914d0e36f198977fcce8b60d0ad55";
+const char bonered_derivation_hash[] = "5b08b88272c7f304164f2323c2639bfbb27b3c2a0579ccb202b710c8f468a78d";
 int bonered_abi(void) { return 3; }
 #endif
 

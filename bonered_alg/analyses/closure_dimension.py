@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from ..algebra import polyring as pr
 from ..elimination.problem import EliminationProblem, EliminationResult
 from ..errors import MechanismDefinitionError
 from ..report.latex_util import latex, tex_escape
@@ -53,10 +54,7 @@ class ClosureDimension:
         mech = d.mechanism
         closure = mech.closure(self.closure)
         values = {p.symbol: exact(p.value) for p in mech.parameters}
-        # numbers for symbols: xreplace gives subs's expression once expanded (solution_counts)
-        eqs = tuple(dict.fromkeys(e for e in (sp.expand(g.xreplace(values))
-                                              for g in d.closure_generators(self.closure))
-                                  if e != 0))
+        eqs = pr.at_values(d.closure_generators(self.closure), values)
         used = set().union(*(e.free_symbols for e in eqs))
         stray = used - set(closure.pose) - set(mech.joints)
         if stray:

@@ -15,6 +15,7 @@ from types import MappingProxyType
 
 import sympy as sp
 
+from ..algebra import polyring as pr
 from ..elimination import polyterms as pt
 from ..elimination.problem import ParametricProblem
 from ..errors import MechanismDefinitionError
@@ -42,12 +43,7 @@ class SolutionCounts:
         gens = d.closure_generators(self.closure)
         out = {}
         for label, values in self.configurations.items():
-            # symbols replaced by numbers: xreplace gives subs's expression once expanded
-            # (the same srepr on all 188 calls of this analysis and closure_dimension over the
-            # six derivations, 0.34 s against 1.70 s)
-            values = {k: sp.sympify(v) for k, v in values.items()}
-            eqs = tuple(dict.fromkeys(e for e in (sp.expand(g.xreplace(values)) for g in gens)
-                                      if e != 0))
+            eqs = pr.at_values(gens, values)
             problem = ParametricProblem(f"mechanism {mech.name!r}: ideal of the "
                                         f"{closure.name} at {label}", eqs, unknowns, ())
             res = algebra.lex_basis(problem)
