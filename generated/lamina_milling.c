@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e5d07ed88633f35a3e70bc19f800bc9c629073bbdd904d7fb19b851bc76265fc
+ * Derivation hash: 62a422b809d71ebef9c1f91b6786794cd203f9ee94af5497032a3c0889215711
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e5d07ed88633f35a3e70bc19f800bc9c629073bbdd904d7fb19b851bc76265fc";
+const char bonered_derivation_hash[] = "62a422b809d71ebef9c1f91b6786794cd203f9ee94af5497032a3c0889215711";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e84028fae64eadc03aec0000705aecae3e3af76bfcc3186825b3bc4b421f00c9
+ * Derivation hash: f54d028630dcaef71fdcc8c815063755255cec247bf977e161532e0eec537601
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e84028fae64eadc03aec0000705aecae3e3af76bfcc3186825b3bc4b421f00c9";
+const char bonered_derivation_hash[] = "f54d028630dcaef71fdcc8c815063755255cec247bf977e161532e0eec537601";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: bbdd498dfb7a2f9f80ef8ad00e8834097e05bc98815a0bee79585659d6ceb195
+ * Derivation hash: 9a8ac30567eed6fbf8c4f11c951c220d4bd77a730937569f58b69b5bd259fe6f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "bbdd498dfb7a2f9f80ef8ad00e8834097e05bc98815a0bee79585659d6ceb195";
+const char bonered_derivation_hash[] = "9a8ac30567eed6fbf8c4f11c951c220d4bd77a730937569f58b69b5bd259fe6f";
 int bonered_abi(void) { return 3; }
 #endif
 

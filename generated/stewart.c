@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f999bdddffb81d860d8e158c6aec73ea6d0d74f5912684a91fd4260f28717c28
+ * Derivation hash: 7d8e6a09ce1c3df2278a86c2bef332afb4f958d0ab782792b156beda650e06f0
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f999bdddffb81d860d8e158c6aec73ea6d0d74f5912684a91fd4260f28717c28";
+const char bonered_derivation_hash[] = "7d8e6a09ce1c3df2278a86c2bef332afb4f958d0ab782792b156beda650e06f0";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 04de090fd5799652a23e16bd4f3659d23b3a788ed130297040e09046d88f60d3
+ * Derivation hash: 9f2c5d5e561284d78b98aff9f24ddd36aa8140e34960e32bfb60e542fd54059e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "04de090fd5799652a23e16bd4f3659d23b3a788ed130297040e09046d88f60d3";
+const char bonered_derivation_hash[] = "9f2c5d5e561284d78b98aff9f24ddd36aa8140e34960e32bfb60e542fd54059e";
 int bonered_abi(void) { return 3; }
 #endif
 

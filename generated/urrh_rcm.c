@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5b08b88272c7f304164f2323c2639bfbb27b3c2a0579ccb202b710c8f468a78d
+ * Derivation hash: ff0a83b184f6bf2887141f874852cd7eb716422a0d9bdf28e1e5de5ebca2420a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5b08b88272c7f304164f2323c2639bfbb27b3c2a0579ccb202b710c8f468a78d";
+const char bonered_derivation_hash[] = "ff0a83b184f6bf2887141f874852cd7eb716422a0d9bdf28e1e5de5ebca2420a";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -116,3 +116,43 @@ def test_forward_singularities_lose_no_pose(name, seed, lines, crossings):
                     assert np.nanmin(np.abs(back - q).max(axis=-1), axis=-1).max() < 1e-6
                 checked += 1
     assert checked >= 7 * crossings, checked
+
+
+# ----------------------------------------------------------------- polish hands verify its system
+@pytest.mark.parametrize("name", ["urrh_rcm", "pro_hep_lct", "lamina_milling"])
+def test_verify_on_the_system_polish_kept_decides_as_a_fresh_evaluation(name):
+    """:func:`polish` returns the residuals and Jacobian of each row's last evaluation (at
+    most one step below STEP_RTOL before the polished unknowns) and :func:`verify` takes
+    them instead of evaluating the Newton kernel again.  Held against the kernel evaluated
+    at the polished unknowns: the same Jacobian to rounding (each row to its own scale),
+    and the same verdicts and unknowns in every mode, on configurations from the IK,
+    perturbed ones (some modes not real) and NaN joints."""
+    from bonered_alg.runtime import fk as fk_solver
+    from bonered_alg.runtime.backsubstitution import backsubstitute
+
+    m = _module(name)
+    model, rng = m._MODEL, np.random.default_rng(3)
+    spec = model.fk
+    home = np.array([0.0 if v is None else v for v in m.HOME])
+    scale = np.array([20.0 if u == "mm" else 0.3 for u in m.POSE_UNITS])
+    q = m.ik(home + rng.uniform(-1, 1, (400, len(home))) * scale, limits=False)
+    q = model.algebraic(q[np.isfinite(q).all(axis=-1)])
+    q = np.concatenate([q, q[:100] * rng.uniform(0.7, 1.3, q[:100].shape),
+                        np.full((2, q.shape[1]), np.nan)])
+    par = [np.asarray(v, dtype=float) for v in m.PARAMETERS.values()]
+    n, checked = len(spec.unknowns), 0
+    for mode in range(2 ** len(spec.mode_bits)):
+        study, status = backsubstitute(q, spec.steps, spec.index, n, mode, par, True)
+        polished, (f, jac) = fk_solver.polish(spec, q, study, par)
+        f0, jac0 = fk_solver.closure_system(spec, q, polished, par)
+        rows = np.isfinite(polished).all(axis=-1)
+        assert np.isnan(jac[~rows]).all()
+        # each equation at its own scale (the generators' units differ), as verify scales it
+        scale_j = 1.0 + np.abs(jac0[rows]).max(axis=-1, keepdims=True)
+        assert (np.abs(jac[rows] - jac0[rows]) <= 1e-9 * scale_j).all()
+        kept = fk_solver.verify(spec, q, polished, par, status, (f, jac))
+        fresh = fk_solver.verify(spec, q, polished, par, status)
+        assert np.array_equal(kept[1], fresh[1])
+        assert np.array_equal(kept[0], fresh[0], equal_nan=True)
+        checked += int(rows.sum())
+    assert checked > 400
