@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 62a422b809d71ebef9c1f91b6786794cd203f9ee94af5497032a3c0889215711
+ * Derivation hash: 53504e761cd6a48cb36eab80fce7fafd3ad2cc9251fe17a1a3cf8f15dca594d7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "62a422b809d71ebef9c1f91b6786794cd203f9ee94af5497032a3c0889215711";
+const char bonered_derivation_hash[] = "53504e761cd6a48cb36eab80fce7fafd3ad2cc9251fe17a1a3cf8f15dca594d7";
 int bonered_abi(void) { return 3; }
 #endif
 

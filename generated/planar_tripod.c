@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f54d028630dcaef71fdcc8c815063755255cec247bf977e161532e0eec537601
+ * Derivation hash: 84fea9726dbb36dbd16187132c11ae74d47f95a741ed8d49313fa5fb3e0c8521
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f54d028630dcaef71fdcc8c815063755255cec247bf977e161532e0eec537601";
+const char bonered_derivation_hash[] = "84fea9726dbb36dbd16187132c11ae74d47f95a741ed8d49313fa5fb3e0c8521";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9a8ac30567eed6fbf8c4f11c951c220d4bd77a730937569f58b69b5bd259fe6f
+ * Derivation hash: 2a02b9be2d14055aa7d9c8860cd87e38c304a86a6fbfd74cfabe536e7eac0805
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9a8ac30567eed6fbf8c4f11c951c220d4bd77a730937569f58b69b5bd259fe6f";
+const char bonered_derivation_hash[] = "2a02b9be2d14055aa7d9c8860cd87e38c304a86a6fbfd74cfabe536e7eac0805";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7d8e6a09ce1c3df2278a86c2bef332afb4f958d0ab782792b156beda650e06f0
+ * Derivation hash: 9820f14b2a74a84577cf4d34564928eed672a9e46b5eb982ceb66b51bd3c9136
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7d8e6a09ce1c3df2278a86c2bef332afb4f958d0ab782792b156beda650e06f0";
+const char bonered_derivation_hash[] = "9820f14b2a74a84577cf4d34564928eed672a9e46b5eb982ceb66b51bd3c9136";
 int bonered_abi(void) { return 3; }
 #endif
 

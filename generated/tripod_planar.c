@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9f2c5d5e561284d78b98aff9f24ddd36aa8140e34960e32bfb60e542fd54059e
+ * Derivation hash: 38406cce71143dad29fa3c06cf129ef6592b93738aada274489a4ee231df333e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9f2c5d5e561284d78b98aff9f24ddd36aa8140e34960e32bfb60e542fd54059e";
+const char bonered_derivation_hash[] = "38406cce71143dad29fa3c06cf129ef6592b93738aada274489a4ee231df333e";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ff0a83b184f6bf2887141f874852cd7eb716422a0d9bdf28e1e5de5ebca2420a
+ * Derivation hash: f129246019248a49ec226567a64455842f193d5ecb0d66cbb26f8490fec653b1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ff0a83b184f6bf2887141f874852cd7eb716422a0d9bdf28e1e5de5ebca2420a";
+const char bonered_derivation_hash[] = "f129246019248a49ec226567a64455842f193d5ecb0d66cbb26f8490fec653b1";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -156,3 +156,28 @@ def test_verify_on_the_system_polish_kept_decides_as_a_fresh_evaluation(name):
         assert np.array_equal(kept[0], fresh[0], equal_nan=True)
         checked += int(rows.sum())
     assert checked > 400
+
+
+@pytest.mark.parametrize("name", ["urrh_rcm", "tripod_planar"])
+def test_fk_in_chunks_is_fk_in_one_piece(name, monkeypatch):
+    """fk and fk_status evaluate FK_CHUNK configurations at a time: with chunks of 97
+    (many boundaries, a leading shape of two axes, NaN and unreachable joints among them)
+    the poses and statuses are those of one piece, to the bit."""
+    from bonered_alg.runtime import model as runtime_model
+
+    m = _module(name)
+    rng = np.random.default_rng(5)
+    home = np.array([0.0 if v is None else v for v in m.HOME])
+    scale = np.array([20.0 if u == "mm" else 0.3 for u in m.POSE_UNITS])
+    q = m.ik(home + rng.uniform(-1, 1, (300, len(home))) * scale, limits=False)
+    q = q[np.isfinite(q).all(axis=-1)][:200]
+    q = np.concatenate([q, q[:40] * rng.uniform(0.5, 1.5, q[:40].shape),
+                        np.full((2, q.shape[1]), np.nan)])
+    q = q[rng.permutation(len(q))][: len(q) // 2 * 2].reshape(-1, 2, q.shape[1])
+    monkeypatch.setattr(runtime_model, "FK_CHUNK", 10 ** 9)
+    whole, whole_status = m.fk(q), m.fk_status(q)
+    monkeypatch.setattr(runtime_model, "FK_CHUNK", 97)
+    assert np.array_equal(m.fk(q), whole, equal_nan=True)
+    assert np.array_equal(m.fk_status(q), whole_status)
+    assert whole.shape == q.shape[:2] + (m.FK_MODES, len(m.POSE))
+    assert np.isfinite(whole).any() and np.isnan(whole).any()
