@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 53504e761cd6a48cb36eab80fce7fafd3ad2cc9251fe17a1a3cf8f15dca594d7
+ * Derivation hash: 2d64db0b17e3e3082e73e613e04ac177116785c07944581efa68e5d55072ec1e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "53504e761cd6a48cb36eab80fce7fafd3ad2cc9251fe17a1a3cf8f15dca594d7";
+const char bonered_derivation_hash[] = "2d64db0b17e3e3082e73e613e04ac177116785c07944581efa68e5d55072ec1e";
 int bonered_abi(void) { return 3; }
 #endif
 

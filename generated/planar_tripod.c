@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 84fea9726dbb36dbd16187132c11ae74d47f95a741ed8d49313fa5fb3e0c8521
+ * Derivation hash: 591611c69e60e69572068c0fe306f3c34daab39b6d00a7a429d68fecd5677bee
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "84fea9726dbb36dbd16187132c11ae74d47f95a741ed8d49313fa5fb3e0c8521";
+const char bonered_derivation_hash[] = "591611c69e60e69572068c0fe306f3c34daab39b6d00a7a429d68fecd5677bee";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2a02b9be2d14055aa7d9c8860cd87e38c304a86a6fbfd74cfabe536e7eac0805
+ * Derivation hash: d97097bacef6c031e368f92eb270a357b305813937756a43d87cb1c6642bbddb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2a02b9be2d14055aa7d9c8860cd87e38c304a86a6fbfd74cfabe536e7eac0805";
+const char bonered_derivation_hash[] = "d97097bacef6c031e368f92eb270a357b305813937756a43d87cb1c6642bbddb";
 int bonered_abi(void) { return 3; }
 #endif
 

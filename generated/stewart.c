@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9820f14b2a74a84577cf4d34564928eed672a9e46b5eb982ceb66b51bd3c9136
+ * Derivation hash: ccfb9a972a547faf47077fe0acd3ffe8259fe7295cc0cd7669ed07674edb6229
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9820f14b2a74a84577cf4d34564928eed672a9e46b5eb982ceb66b51bd3c9136";
+const char bonered_derivation_hash[] = "ccfb9a972a547faf47077fe0acd3ffe8259fe7295cc0cd7669ed07674edb6229";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 38406cce71143dad29fa3c06cf129ef6592b93738aada274489a4ee231df333e
+ * Derivation hash: 37a19f6c92c9bb4fde7887970f06d1621d733d7bdf3047aecce0a27070692e1a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "38406cce71143dad29fa3c06cf129ef6592b93738aada274489a4ee231df333e";
+const char bonered_derivation_hash[] = "37a19f6c92c9bb4fde7887970f06d1621d733d7bdf3047aecce0a27070692e1a";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f129246019248a49ec226567a64455842f193d5ecb0d66cbb26f8490fec653b1
+ * Derivation hash: c20ab79245fcdea45de2d3f9fa491241e328cc16f012e0d983ae1c22a1f5a642
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f129246019248a49ec226567a64455842f193d5ecb0d66cbb26f8490fec653b1";
+const char bonered_derivation_hash[] = "c20ab79245fcdea45de2d3f9fa491241e328cc16f012e0d983ae1c22a1f5a642";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -181,3 +181,49 @@ def test_fk_in_chunks_is_fk_in_one_piece(name, monkeypatch):
     assert np.array_equal(m.fk_status(q), whole_status)
     assert whole.shape == q.shape[:2] + (m.FK_MODES, len(m.POSE))
     assert np.isfinite(whole).any() and np.isnan(whole).any()
+
+
+def _svd_step(js, fs):
+    """The Gauss-Newton step and rank test by the SVD alone (the pseudo-inverse with the
+    singular values below COND_RTOL of the largest cut): the reference for _scaled_step."""
+    from bonered_alg.runtime.status import COND_RTOL
+
+    u, sv, vt = np.linalg.svd(js, full_matrices=False)
+    kept = sv > COND_RTOL * sv[..., :1]
+    inv = np.where(kept, 1.0 / np.where(kept, sv, 1.0), 0.0)
+    step = np.einsum("...ij,...i->...j", vt, inv * np.einsum("...ji,...j->...i", u, fs))
+    return step, sv[..., -1] > COND_RTOL * sv[..., 0]
+
+
+@pytest.mark.parametrize("m, n", [(11, 4), (3, 3), (6, 6), (2, 3)])
+def test_scaled_step_is_the_svd_least_squares_step_at_every_condition(m, n):
+    """verify's Gauss-Newton step and rank test (_scaled_step: the normal equations where
+    det(G) / trace(G)^n certifies the conditioning, else the SVD) against the SVD alone, on
+    unit-row matrices with sigma_min / sigma_max from 1 to 1e-14 and exactly rank
+    deficient ones, small and large right-hand sides, and rows that are not finite: the same
+    rank decisions, the same steps to 1e-6 of their size plus rounding."""
+    from bonered_alg.runtime.fk import _scaled_step
+
+    rng = np.random.default_rng(m * 10 + n)
+    mats, rhs = [], []
+    for ratio in np.logspace(0, -14, 57):
+        for _ in range(6):
+            a, _ = np.linalg.qr(rng.standard_normal((m, m)))
+            b, _ = np.linalg.qr(rng.standard_normal((n, n)))
+            k = min(m, n)
+            sv = np.geomspace(1.0, ratio, k) if k > 1 else np.ones(1)
+            if rng.random() < 0.1:
+                sv[-1] = 0.0
+            js = a[:, :k] @ np.diag(sv) @ b[:k, :]
+            js /= np.maximum(np.linalg.norm(js, axis=-1, keepdims=True), 1e-300)
+            mats.append(js)
+            rhs.append(rng.standard_normal(m) * 10.0 ** rng.integers(-16, 1))
+    js, fs = np.array(mats), np.array(rhs)
+    finite = rng.random(len(js)) > 0.05
+    step, cond_ok = _scaled_step(js, fs, finite)
+    ref_step, ref_ok = _svd_step(js, fs)
+    assert np.array_equal(cond_ok[finite], ref_ok[finite])
+    assert np.isnan(step[~finite]).all()
+    size = np.abs(ref_step[finite]).max(axis=-1, keepdims=True)
+    assert (np.abs(step[finite] - ref_step[finite]) <= 1e-6 * size + 1e-13).all()
+    assert ref_ok[finite].any() and not ref_ok[finite].all()

@@ -124,14 +124,7 @@ def verify(spec, q, study, par, status, system=None):
         rows = numpy.linalg.norm(js, axis=-1)
         rows = numpy.where(rows > 0, rows, 1.0)
         js, fs = js / rows[..., None], numpy.where(finite[..., None], f, 0.0) / rows
-        u, sv, vt = numpy.linalg.svd(js, full_matrices=False)
-        cond_ok = sv[..., -1] > COND_RTOL * sv[..., 0]
-        # the Gauss-Newton step in the scaled unknowns, by least squares through the same
-        # SVD (the pseudo-inverse with singular values below COND_RTOL of the largest cut)
-        kept = sv > COND_RTOL * sv[..., :1]
-        inv = numpy.where(kept, 1.0 / numpy.where(kept, sv, 1.0), 0.0)
-        proj = numpy.einsum("...ji,...j->...i", u, fs)
-        step = numpy.einsum("...ij,...i->...j", vt, inv * proj)
+        step, cond_ok = _scaled_step(js, fs, finite)
         verified = finite & (numpy.abs(step) <= VERIFY_RTOL).all(axis=-1)
     solved = numpy.isfinite(study).all(axis=-1)
     study = numpy.where(solved[..., None] & ~verified[..., None], numpy.nan, study)
@@ -140,6 +133,44 @@ def verify(spec, q, study, par, status, system=None):
     solved &= (status == OK) | (status == ON_BOUNDARY)
     new = numpy.where(~verified, UNVERIFIED, numpy.where(cond_ok, OK, FORWARD_SINGULAR))
     return study, numpy.where(solved, new, status).astype(numpy.int8)
+
+
+# det(G) / trace(G)^n above this certifies sigma_min / sigma_max >= 1e-4 (G = J^T J): the
+# Jacobian far from rank deficiency (COND_RTOL), the normal equations accurate (cond(G) <=
+# 1e8: the step to about 1e-8 of itself)
+CERTIFIED_GRAM = 1e-8
+
+
+def _scaled_step(js, fs, finite):
+    """The Gauss-Newton step (..., n) of the row-scaled system ``js step = fs`` (..., m, n)
+    by least squares, and whether ``js`` is far from rank deficiency (sigma_min > COND_RTOL
+    sigma_max); NaN steps where not ``finite``.
+
+    Where ``det(G) / trace(G)^n > CERTIFIED_GRAM`` (G = js^T js, whose eigenvalues are
+    sigma^2: each at most the trace, so sigma_min^2 / sigma_max^2 >= det(G) / trace(G)^n),
+    the step solves the normal equations ``G step = js^T fs`` and the rank test passes;
+    elsewhere both come from the SVD, the pseudo-inverse with the singular values below
+    COND_RTOL of the largest cut.  The two agree where both apply (the same least-squares
+    step); the normal equations take 1/20 of the time of numpy's batched SVD, which costs
+    about 3 us per small matrix (urrh_rcm: 40 % of forward kinematics)."""
+    n = js.shape[-1]
+    jt = numpy.swapaxes(js, -1, -2)
+    gram, rhs = jt @ js, jt @ fs[..., None]
+    trace = numpy.trace(gram, axis1=-2, axis2=-1)
+    certified = finite & (numpy.linalg.det(gram) > CERTIFIED_GRAM * trace ** n)
+    step = numpy.linalg.solve(numpy.where(certified[..., None, None], gram, numpy.eye(n)),
+                              numpy.where(certified[..., None, None], rhs, 0.0))[..., 0]
+    step[~finite] = numpy.nan
+    cond_ok = certified.copy()
+    hard = finite & ~certified
+    if hard.any():
+        u, sv, vt = numpy.linalg.svd(js[hard], full_matrices=False)
+        cond_ok[hard] = sv[..., -1] > COND_RTOL * sv[..., 0]
+        kept = sv > COND_RTOL * sv[..., :1]
+        inv = numpy.where(kept, 1.0 / numpy.where(kept, sv, 1.0), 0.0)
+        proj = numpy.einsum("...ji,...j->...i", u, fs[hard])
+        step[hard] = numpy.einsum("...ij,...i->...j", vt, inv * proj)
+    return step, cond_ok
 
 
 def checked_mode(spec, steps, index, q, mode, par, with_status):
