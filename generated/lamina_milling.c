@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2d64db0b17e3e3082e73e613e04ac177116785c07944581efa68e5d55072ec1e
+ * Derivation hash: 398176794fa33bb6b7d432f340067d918dd4c7d7a6a85448569e4ce05f400d81
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2d64db0b17e3e3082e73e613e04ac177116785c07944581efa68e5d55072ec1e";
+const char bonered_derivation_hash[] = "398176794fa33bb6b7d432f340067d918dd4c7d7a6a85448569e4ce05f400d81";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 591611c69e60e69572068c0fe306f3c34daab39b6d00a7a429d68fecd5677bee
+ * Derivation hash: 6f17cd363a7fc3e65fcf60e97a51ce4867f2be3f6d077122d2282f8c792b1d00
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "591611c69e60e69572068c0fe306f3c34daab39b6d00a7a429d68fecd5677bee";
+const char bonered_derivation_hash[] = "6f17cd363a7fc3e65fcf60e97a51ce4867f2be3f6d077122d2282f8c792b1d00";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d97097bacef6c031e368f92eb270a357b305813937756a43d87cb1c6642bbddb
+ * Derivation hash: 8a264d055342d3dd0886d13b6f8b2e73d14eb5ecda4c4cd219b7cefa81d6705e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d97097bacef6c031e368f92eb270a357b305813937756a43d87cb1c6642bbddb";
+const char bonered_derivation_hash[] = "8a264d055342d3dd0886d13b6f8b2e73d14eb5ecda4c4cd219b7cefa81d6705e";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ccfb9a972a547faf47077fe0acd3ffe8259fe7295cc0cd7669ed07674edb6229
+ * Derivation hash: 851e4f67220e6ee4ee845f5f4238edadaa871b0ebca1183d8f026eee73d92439
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ccfb9a972a547faf47077fe0acd3ffe8259fe7295cc0cd7669ed07674edb6229";
+const char bonered_derivation_hash[] = "851e4f67220e6ee4ee845f5f4238edadaa871b0ebca1183d8f026eee73d92439";
 int bonered_abi(void) { return 3; }
 #endif
 

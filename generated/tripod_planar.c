@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 37a19f6c92c9bb4fde7887970f06d1621d733d7bdf3047aecce0a27070692e1a
+ * Derivation hash: fe77c34ef43098ead8f56a16fb1f910167f8293d9f6a5c85e9d51df54bb30d20
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "37a19f6c92c9bb4fde7887970f06d1621d733d7bdf3047aecce0a27070692e1a";
+const char bonered_derivation_hash[] = "fe77c34ef43098ead8f56a16fb1f910167f8293d9f6a5c85e9d51df54bb30d20";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c20ab79245fcdea45de2d3f9fa491241e328cc16f012e0d983ae1c22a1f5a642
+ * Derivation hash: 4cc93718b71df67459d5737ab467ecef882366a50f4326ca11fc4584a90e4f46
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c20ab79245fcdea45de2d3f9fa491241e328cc16f012e0d983ae1c22a1f5a642";
+const char bonered_derivation_hash[] = "4cc93718b71df67459d5737ab467ecef882366a50f4326ca11fc4584a90e4f46";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -103,6 +103,44 @@ def test_fk_gives_every_assembly_mode_and_round_trips():
     assert np.abs(back - q).max() < 1e-9
 
 
+def test_fk_newton_kernel_vanishes_on_assemblies_and_is_its_own_jacobian():
+    """The Newton kernel of fk (the leg generators' residuals and their Jacobian in
+    FK_UNKNOWNS, parameter coefficients computed once per call): residuals at rounding
+    level at the Study coordinates of the poses the IK assembled, the Jacobian against
+    central differences of the residuals, and per-configuration geometry arrays giving the
+    values of the scalar geometry."""
+    poses, q = _reachable(200, seed=11)
+    qa = m._MODEL.algebraic(q)
+    w1, w2 = np.tan(poses[:, 0] / 2), np.tan(poses[:, 1] / 2)
+    d1, d2 = poses[:, 2], poses[:, 2] - PAR["p"] * poses[:, 3]  # 002 eq. (9)
+    par = list(PAR.values())
+    n = len(m.FK_UNKNOWNS)
+
+    def newton(x, geometry=par):
+        vals = [np.broadcast_to(v, (len(qa),)) for v in
+                m._fk_newton(*x, *qa.T, *geometry)]
+        return np.stack(vals[:len(vals) // (n + 1)], -1), np.stack(
+            vals[len(vals) // (n + 1):], -1).reshape(len(qa), -1, n)
+
+    x = [w1, w2, d1, d2]
+    f, jac = newton(x)
+    size = 1.0 + np.abs(jac).max(axis=-1) * (1.0 + np.abs(np.stack(x, -1))).max(axis=-1)[:, None]
+    assert f.shape[-1] > n and (np.abs(f) <= 1e-11 * size).all()
+    rng = np.random.default_rng(2)
+    x = [v + rng.uniform(-0.05, 0.05, v.shape) * (1.0 + np.abs(v)) for v in x]
+    f, jac = newton(x)
+    for k in range(n):
+        h = 1e-6 * (1.0 + np.abs(x[k]))
+        up, down = list(x), list(x)
+        up[k], down[k] = x[k] + h, x[k] - h
+        fd = (newton(up)[0] - newton(down)[0]) / (2 * h)[:, None]
+        scale = 1.0 + np.abs(jac).max(axis=-1)
+        assert (np.abs(fd - jac[..., k]) <= 1e-6 * scale).all()
+    arrays = [np.full(len(qa), v) for v in par]
+    fa, ja = newton(x, arrays)
+    assert np.allclose(fa, f, rtol=1e-14, atol=0) and np.allclose(ja, jac, rtol=1e-14, atol=0)
+
+
 def test_ik_against_mpmath_at_50_digits():
     """The vector model's IK at 50 digits (mpmath.findroot on each loop closure from the
     float root) against the generated float code: 1e-12."""

@@ -343,7 +343,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         kernels.append(kernel(
             "_fk_newton", [*spec.fk_unknowns, *spec.joints, *par],
             list(system) + list(pr.jacobian(list(system), spec.fk_unknowns)),
-            "Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major)."))
+            "Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major).",
+            scalars=par))
     compact = spec.compact or {}
     gens = [compact[st.joint].generator() if st.joint in compact else sp.expand(st.generator)
             for st in spec.steps]
