@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 398176794fa33bb6b7d432f340067d918dd4c7d7a6a85448569e4ce05f400d81
+ * Derivation hash: 98dbac327f660de0dc9d205712a7caa6cfe006e71c533d62d0d68aabdc7336af
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "398176794fa33bb6b7d432f340067d918dd4c7d7a6a85448569e4ce05f400d81";
+const char bonered_derivation_hash[] = "98dbac327f660de0dc9d205712a7caa6cfe006e71c533d62d0d68aabdc7336af";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6f17cd363a7fc3e65fcf60e97a51ce4867f2be3f6d077122d2282f8c792b1d00
+ * Derivation hash: d1b04757114ba8e4db18d77cb94dae03fc3ae319635164d6c678b4e79e299811
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6f17cd363a7fc3e65fcf60e97a51ce4867f2be3f6d077122d2282f8c792b1d00";
+const char bonered_derivation_hash[] = "d1b04757114ba8e4db18d77cb94dae03fc3ae319635164d6c678b4e79e299811";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8a264d055342d3dd0886d13b6f8b2e73d14eb5ecda4c4cd219b7cefa81d6705e
+ * Derivation hash: b1fcb5c86615af41bbf3c746d5a2962b468f8b7fa959309a761bce3933297978
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8a264d055342d3dd0886d13b6f8b2e73d14eb5ecda4c4cd219b7cefa81d6705e";
+const char bonered_derivation_hash[] = "b1fcb5c86615af41bbf3c746d5a2962b468f8b7fa959309a761bce3933297978";
 int bonered_abi(void) { return 3; }
 #endif
 

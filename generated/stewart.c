@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 851e4f67220e6ee4ee845f5f4238edadaa871b0ebca1183d8f026eee73d92439
+ * Derivation hash: 9460f59ef42fc808536a49250d51f65fefc24fe2e105973102d10a34050bb427
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "851e4f67220e6ee4ee845f5f4238edadaa871b0ebca1183d8f026eee73d92439";
+const char bonered_derivation_hash[] = "9460f59ef42fc808536a49250d51f65fefc24fe2e105973102d10a34050bb427";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fe77c34ef43098ead8f56a16fb1f910167f8293d9f6a5c85e9d51df54bb30d20
+ * Derivation hash: 733c3228320c63f12a2e9c6ff3d12d205d8a2836601634946bf4462018b9d767
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fe77c34ef43098ead8f56a16fb1f910167f8293d9f6a5c85e9d51df54bb30d20";
+const char bonered_derivation_hash[] = "733c3228320c63f12a2e9c6ff3d12d205d8a2836601634946bf4462018b9d767";
 int bonered_abi(void) { return 3; }
 #endif
 

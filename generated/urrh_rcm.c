@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4cc93718b71df67459d5737ab467ecef882366a50f4326ca11fc4584a90e4f46
+ * Derivation hash: 3c199ee1aac7631e5df8eb3755587d249bc993d22dc7b12af68d8ea9b8442544
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "4cc93718b71df67459d5737ab467ecef882366a50f4326ca11fc4584a90e4f46";
+const char bonered_derivation_hash[] = "3c199ee1aac7631e5df8eb3755587d249bc993d22dc7b12af68d8ea9b8442544";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -174,3 +174,39 @@ def test_runtime_imports_without_sympy():
             "print('ok')")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
+
+
+@pytest.mark.parametrize("name", ["stewart", "urrh_rcm", "tripod_planar", "planar_tripod",
+                                  "pro_hep_lct", "lamina_milling"])
+def test_geometry_as_per_pose_arrays_gives_the_scalar_values(name):
+    """Every kernel computes its parameters' coefficients once per call (hoisted before the
+    array program): given as one value per pose, the geometry must give what the scalar
+    geometry gives, in the singularity polynomials, Ji, Jo, the IK with its Jacobian and the
+    forward kinematics (the default geometry, broadcast to the poses; the 3-RPS closures'
+    forward kinematics raised a broadcasting error here before 2026-12-07)."""
+    import importlib
+
+    m = importlib.import_module(f"bonered_alg.generated.{name}")
+    rng = np.random.default_rng(4)
+    home = np.array([0.0 if v is None else v for v in m.HOME])
+    scale = np.array([20.0 if u == "mm" else 0.3 for u in m.POSE_UNITS])
+    pose = home + rng.uniform(-1, 1, (300, len(home))) * scale
+    q = m.ik(pose, limits=False)
+    keep = np.isfinite(q).all(axis=-1)
+    pose, q = pose[keep], q[keep]
+    arrays = {k: np.full(len(pose), v) for k, v in m.PARAMETERS.items()}
+    assert len(pose) > 100
+
+    def same(a, b):
+        assert np.allclose(a, b, rtol=1e-13, atol=0, equal_nan=True)
+
+    for k, v in m.singularities(pose, q).items():
+        same(m.singularities(pose, q, **arrays)[k], v)
+    same(m.input_jacobian(pose, q, **arrays), m.input_jacobian(pose, q))
+    same(m.output_jacobian(pose, q, **arrays), m.output_jacobian(pose, q))
+    for a, b in zip(m.ik_and_jacobian(pose, limits=False, **arrays),
+                    m.ik_and_jacobian(pose, limits=False)):
+        same(a, b)
+    if m.FK_MODES:
+        same(m.fk(q[:50], **{k: v[:50] for k, v in arrays.items()}),
+             m.fk(q[:50]))

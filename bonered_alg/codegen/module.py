@@ -367,9 +367,11 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
                           "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
                           "substitution: Ji is triangular in the solve order).", c=True,
                           scalars=par))
-    kernels.append(kernel("_ji", args, list(ji), "Input Jacobian dG/dq, row-major."))
+    kernels.append(kernel("_ji", args, list(ji), "Input Jacobian dG/dq, row-major.",
+                          scalars=par))
     kernels.append(kernel("_jo_study", args, list(jo_study),
-                          "Output Jacobian dG/dy in Study coordinates, row-major."))
+                          "Output Jacobian dG/dy in Study coordinates, row-major.",
+                          scalars=par))
     if spec.limits:
         kernels.append(kernel("_limit_values", args, [sp.sympify(lim[1]) for lim in spec.limits],
                               "Quantities bounded by LIMITS (joint strokes, passive angles).",
@@ -392,7 +394,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         if isinstance(expr, sp.MatrixBase):  # a determinant, evaluated numerically
             kern = kernel(f"_sing_{name}", [*study, *spec.joints, *par], list(expr),
                           f"Entries (row-major) of the matrix whose determinant is {name}: "
-                          f"{meaning}")
+                          f"{meaning}", scalars=par)
             kernels.append(kern)
             sing_matrices.append((name, kern.name, expr.rows))
             continue
@@ -402,7 +404,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
             raise ValueError(f"{spec.name}: singularity {name} has symbols "
                              f"{sorted(map(str, stray))} outside the Study coordinates, "
                              "joints and parameters")
-        kern = kernel(f"_sing_{name}", [*study, *spec.joints, *par], [expr], meaning)
+        kern = kernel(f"_sing_{name}", [*study, *spec.joints, *par], [expr], meaning,
+                      scalars=par)
         kernels.append(kern)
         sing_kernels.append((name, kern.name))
     passive_table, passive_names, passive_units, passive_notes = _passive_kernels(

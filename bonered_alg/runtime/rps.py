@@ -195,6 +195,8 @@ def solve(k, q, par):
         w = roots(eliminant(c[..., 0, :, :], c[..., 1, :, :], c[..., 2, :, :]))
         u, real = candidates(c, w)
         qk = [numpy.asarray(v)[..., None] for v in qc]
+        # the geometry alike, where it is given per configuration: against the modes' axis
+        pk = [p if numpy.ndim(p) == 0 else numpy.asarray(p)[..., None] for p in par]
         # Newton in the joint angles theta = 2 atan(u) on e_ij / ((1 + u_i^2)(1 + u_j^2)),
         # bounded functions of the angles: well conditioned also for legs near theta = pi
         # (the mirror images below the base, u large)
@@ -222,7 +224,7 @@ def solve(k, q, par):
         # the 16 modes: solved ones first (by decreasing platform height), then failures
         u = numpy.tan(theta / 2.0)
         cen = numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), u.shape[:-1])
-                           for v in k.centres(u[..., 0], u[..., 1], u[..., 2], *qk, *par)],
+                           for v in k.centres(u[..., 0], u[..., 1], u[..., 2], *qk, *pk)],
                           axis=-1).reshape(u.shape[:-1] + (3, 3))
         height = cen[..., 2].mean(axis=-1)
         key = numpy.where(converged, -height, numpy.inf)
