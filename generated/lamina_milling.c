@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 98dbac327f660de0dc9d205712a7caa6cfe006e71c533d62d0d68aabdc7336af
+ * Derivation hash: 50940642d31aa979aac551c9b043f57c7642469f4d6a75d20c3bd09560f972ff
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "98dbac327f660de0dc9d205712a7caa6cfe006e71c533d62d0d68aabdc7336af";
+const char bonered_derivation_hash[] = "50940642d31aa979aac551c9b043f57c7642469f4d6a75d20c3bd09560f972ff";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d1b04757114ba8e4db18d77cb94dae03fc3ae319635164d6c678b4e79e299811
+ * Derivation hash: 7dd05315b2584726e15b3ad580a14e256a38c27b2f271774463abf97e46ea212
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d1b04757114ba8e4db18d77cb94dae03fc3ae319635164d6c678b4e79e299811";
+const char bonered_derivation_hash[] = "7dd05315b2584726e15b3ad580a14e256a38c27b2f271774463abf97e46ea212";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b1fcb5c86615af41bbf3c746d5a2962b468f8b7fa959309a761bce3933297978
+ * Derivation hash: 66e3c5bca37e2c4c7474679a48e963322a1544a6ad5631aaf55f1845f203a830
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b1fcb5c86615af41bbf3c746d5a2962b468f8b7fa959309a761bce3933297978";
+const char bonered_derivation_hash[] = "66e3c5bca37e2c4c7474679a48e963322a1544a6ad5631aaf55f1845f203a830";
 int bonered_abi(void) { return 3; }
 #endif
 

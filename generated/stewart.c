@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9460f59ef42fc808536a49250d51f65fefc24fe2e105973102d10a34050bb427
+ * Derivation hash: f70cda496a708ce34a5fea3496f9af7b650c1be47ed9d583e2ca63ca4c2f13d3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9460f59ef42fc808536a49250d51f65fefc24fe2e105973102d10a34050bb427";
+const char bonered_derivation_hash[] = "f70cda496a708ce34a5fea3496f9af7b650c1be47ed9d583e2ca63ca4c2f13d3";
 int bonered_abi(void) { return 3; }
 #endif
 

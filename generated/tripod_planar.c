@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 733c3228320c63f12a2e9c6ff3d12d205d8a2836601634946bf4462018b9d767
+ * Derivation hash: 126cfa440e0becfbdadcc4e073193231fe6177dd1d1ee15e5a80fb2a8179f8a4
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "733c3228320c63f12a2e9c6ff3d12d205d8a2836601634946bf4462018b9d767";
+const char bonered_derivation_hash[] = "126cfa440e0becfbdadcc4e073193231fe6177dd1d1ee15e5a80fb2a8179f8a4";
 int bonered_abi(void) { return 3; }
 #endif
 

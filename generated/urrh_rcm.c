@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3c199ee1aac7631e5df8eb3755587d249bc993d22dc7b12af68d8ea9b8442544
+ * Derivation hash: f77c13c8889f1520d316fbd58662211e47c7aca13e3c6962c0dc51cc7bbd93d6
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3c199ee1aac7631e5df8eb3755587d249bc993d22dc7b12af68d8ea9b8442544";
+const char bonered_derivation_hash[] = "f77c13c8889f1520d316fbd58662211e47c7aca13e3c6962c0dc51cc7bbd93d6";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -720,7 +720,7 @@ def _passive_kernels(spec, study, par, kernels):
                               [e for b, c in cands for e in (b, c, _term_scale(b, c))],
                               f"Candidates (B, C, S) of B {st.variable} + C = 0, leg "
                               f"{rec.leg}; S, the sum of the terms' magnitudes, says how far "
-                              "B is from zero relative to rounding.")
+                              "B is from zero relative to rounding.", scalars=par)
                 rows.append(("linear", kern, (len(solved),)))
                 solved.append(st.variable)
             elif isinstance(st, QuadraticStep):
@@ -730,7 +730,7 @@ def _passive_kernels(spec, study, par, kernels):
                     break
                 kern = kernel(f"_passive_{rec.leg}_{st.variable}", args, list(st.coefficients),
                               f"(A, B, C) of A {st.variable}^2 + B {st.variable} + C = 0, "
-                              f"leg {rec.leg} (the root of smaller magnitude).")
+                              f"leg {rec.leg} (the root of smaller magnitude).", scalars=par)
                 rows.append(("quadratic", kern, (len(solved),)))
                 solved.append(st.variable)
             else:
@@ -739,7 +739,7 @@ def _passive_kernels(spec, study, par, kernels):
                     break
                 kern = kernel(f"_passive_{rec.leg}_sphere", args, list(st.rotation),
                               f"Rotation quaternion (up to scale) of the spherical joint of "
-                              f"leg {rec.leg}.")
+                              f"leg {rec.leg}.", scalars=par)
                 rows.append(("spherical", kern, tuple(range(len(solved), len(solved) + 4))))
                 solved += list(st.variables)
         if not ok:
@@ -786,7 +786,8 @@ def _link_kernels(spec, study, par, passive_names, kernels):
             outs += [sp.sympify(c).subs(consts) for c in point]
             labels.append(f"{leg.name}.{n_body}")
         kern = kernel(f"_links_{leg.name}", [*study, *spec.joints, *psyms, *par], outs,
-                      f"Study points of the bodies of leg {leg.name} (frame {base}).")
+                      f"Study points of the bodies of leg {leg.name} (frame {base}).",
+                      scalars=par)
         kernels.append(kern)
         rows.append((kern.name, len(names), len(labels)))
         names += labels
@@ -828,7 +829,7 @@ def _static_kernels(spec, study, par, passive_names, link_names, kernels):
             owner.append((body, list(spec.joints).index(v) if v in spec.joints else -1))
         kern = kernel(f"_rates_{leg.name}", [*study, *spec.joints, *psyms, *par], outs,
                       f"d(Study point)/d({', '.join(map(str, variables))}) of each body of "
-                      f"leg {leg.name} (body-major, 8 coordinates each).")
+                      f"leg {leg.name} (body-major, 8 coordinates each).", scalars=par)
         kernels.append(kern)
         rates.append((kern.name, link_names.index(f"{leg.name}.1"), len(moving),
                       len(variables), tuple(owner)))
