@@ -179,7 +179,7 @@ def test_runtime_imports_without_sympy():
 @pytest.mark.parametrize("name", ["stewart", "urrh_rcm", "tripod_planar", "planar_tripod",
                                   "pro_hep_lct", "lamina_milling"])
 def test_geometry_as_per_pose_arrays_gives_the_scalar_values(name):
-    """Every kernel computes its parameters' coefficients once per call (hoisted before the
+    """The kernels compute their parameters' coefficients once per call (hoisted before the
     array program): given as one value per pose, the geometry must give what the scalar
     geometry gives, in the singularity polynomials, Ji, Jo, the IK with its Jacobian, the
     passive joints, the link poses and the forward kinematics (the default geometry,
