@@ -119,6 +119,19 @@ def test_forward_singularities_lose_no_pose(name, seed, lines, crossings):
 
 
 # ----------------------------------------------------------------- polish hands verify its system
+def _configurations(m, rng, tries, keep, perturbed, spread):
+    """Joints (user's units) of up to ``keep`` random poses around home that the IK solves
+    (mm coordinates within 20 mm, angles within 0.3 rad), then ``perturbed`` of them
+    scaled by 1 +- ``spread`` (some modes no longer real) and two rows of NaN."""
+    home = np.array([0.0 if v is None else v for v in m.HOME])
+    scale = np.array([20.0 if u == "mm" else 0.3 for u in m.POSE_UNITS])
+    q = m.ik(home + rng.uniform(-1, 1, (tries, len(home))) * scale, limits=False)
+    q = q[np.isfinite(q).all(axis=-1)][:keep]
+    return np.concatenate([q, q[:perturbed] * rng.uniform(1 - spread, 1 + spread,
+                                                          q[:perturbed].shape),
+                           np.full((2, q.shape[1]), np.nan)])
+
+
 @pytest.mark.parametrize("name", ["urrh_rcm", "pro_hep_lct", "lamina_milling"])
 def test_verify_on_the_system_polish_kept_decides_as_a_fresh_evaluation(name):
     """:func:`polish` returns the residuals and Jacobian of each row's last evaluation (at
@@ -131,14 +144,9 @@ def test_verify_on_the_system_polish_kept_decides_as_a_fresh_evaluation(name):
     from bonered_alg.runtime.backsubstitution import backsubstitute
 
     m = _module(name)
-    model, rng = m._MODEL, np.random.default_rng(3)
+    model = m._MODEL
     spec = model.fk
-    home = np.array([0.0 if v is None else v for v in m.HOME])
-    scale = np.array([20.0 if u == "mm" else 0.3 for u in m.POSE_UNITS])
-    q = m.ik(home + rng.uniform(-1, 1, (400, len(home))) * scale, limits=False)
-    q = model.algebraic(q[np.isfinite(q).all(axis=-1)])
-    q = np.concatenate([q, q[:100] * rng.uniform(0.7, 1.3, q[:100].shape),
-                        np.full((2, q.shape[1]), np.nan)])
+    q = model.algebraic(_configurations(m, np.random.default_rng(3), 400, 400, 100, 0.3))
     par = [np.asarray(v, dtype=float) for v in m.PARAMETERS.values()]
     n, checked = len(spec.unknowns), 0
     for mode in range(2 ** len(spec.mode_bits)):
@@ -167,12 +175,7 @@ def test_fk_in_chunks_is_fk_in_one_piece(name, monkeypatch):
 
     m = _module(name)
     rng = np.random.default_rng(5)
-    home = np.array([0.0 if v is None else v for v in m.HOME])
-    scale = np.array([20.0 if u == "mm" else 0.3 for u in m.POSE_UNITS])
-    q = m.ik(home + rng.uniform(-1, 1, (300, len(home))) * scale, limits=False)
-    q = q[np.isfinite(q).all(axis=-1)][:200]
-    q = np.concatenate([q, q[:40] * rng.uniform(0.5, 1.5, q[:40].shape),
-                        np.full((2, q.shape[1]), np.nan)])
+    q = _configurations(m, rng, 300, 200, 40, 0.5)
     q = q[rng.permutation(len(q))][: len(q) // 2 * 2].reshape(-1, 2, q.shape[1])
     monkeypatch.setattr(runtime_model, "FK_CHUNK", 10 ** 9)
     whole, whole_status = m.fk(q), m.fk_status(q)
