@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 50940642d31aa979aac551c9b043f57c7642469f4d6a75d20c3bd09560f972ff
+ * Derivation hash: d8f33f1558f7052da1fa7b1c88329b1a49165f8011d627950795643dd396b3eb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "50940642d31aa979aac551c9b043f57c7642469f4d6a75d20c3bd09560f972ff";
+const char bonered_derivation_hash[] = "d8f33f1558f7052da1fa7b1c88329b1a49165f8011d627950795643dd396b3eb";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7dd05315b2584726e15b3ad580a14e256a38c27b2f271774463abf97e46ea212
+ * Derivation hash: 5e4b0ff59975f1a7c0b315f06725cd537ad619ebae5b78a7413c621de4b3b0cd
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7dd05315b2584726e15b3ad580a14e256a38c27b2f271774463abf97e46ea212";
+const char bonered_derivation_hash[] = "5e4b0ff59975f1a7c0b315f06725cd537ad619ebae5b78a7413c621de4b3b0cd";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 66e3c5bca37e2c4c7474679a48e963322a1544a6ad5631aaf55f1845f203a830
+ * Derivation hash: f3520b73493ef69389dd108580b97952db63a1bdc82f2a987c2de05b50e08829
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "66e3c5bca37e2c4c7474679a48e963322a1544a6ad5631aaf55f1845f203a830";
+const char bonered_derivation_hash[] = "f3520b73493ef69389dd108580b97952db63a1bdc82f2a987c2de05b50e08829";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f70cda496a708ce34a5fea3496f9af7b650c1be47ed9d583e2ca63ca4c2f13d3
+ * Derivation hash: 7b3dacb61a5048e4319f5585af3c9ce111a88cd771e8164993bf98138be1f3fb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f70cda496a708ce34a5fea3496f9af7b650c1be47ed9d583e2ca63ca4c2f13d3";
+const char bonered_derivation_hash[] = "7b3dacb61a5048e4319f5585af3c9ce111a88cd771e8164993bf98138be1f3fb";
 int bonered_abi(void) { return 3; }
 #endif
 

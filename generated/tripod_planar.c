@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 126cfa440e0becfbdadcc4e073193231fe6177dd1d1ee15e5a80fb2a8179f8a4
+ * Derivation hash: 281c0fa44828d75de281bd5254eab023298c526ac7799826547d2a305e351d48
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "126cfa440e0becfbdadcc4e073193231fe6177dd1d1ee15e5a80fb2a8179f8a4";
+const char bonered_derivation_hash[] = "281c0fa44828d75de281bd5254eab023298c526ac7799826547d2a305e351d48";
 int bonered_abi(void) { return 3; }
 #endif
 

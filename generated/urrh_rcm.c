@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f77c13c8889f1520d316fbd58662211e47c7aca13e3c6962c0dc51cc7bbd93d6
+ * Derivation hash: b2d9c5c9d9ce277d2fa3eac81cf92534648bd9ec68415647e723175bbaa1c82f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f77c13c8889f1520d316fbd58662211e47c7aca13e3c6962c0dc51cc7bbd93d6";
+const char bonered_derivation_hash[] = "b2d9c5c9d9ce277d2fa3eac81cf92534648bd9ec68415647e723175bbaa1c82f";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,8 +3,8 @@
 Generated modules hold tables, kernels and thin wrappers; the algorithms are here, once:
 argument checks (:mod:`.inputs`), the compiled fast path (:mod:`.compiled`), back-
 substitution (:mod:`.backsubstitution`), the model with IK, Jacobians, limits and
-singularities (:mod:`.model`), forward kinematics (:mod:`.fk`, :mod:`.rps`) and the status
-codes (:mod:`.status`). Importing it never imports sympy.
+singularities (:mod:`.model`), forward kinematics (:mod:`.fk`, :mod:`.rps`, with the Newton
+step of :mod:`.newton`) and the status codes (:mod:`.status`). Importing it never imports sympy.
 """
 
 from __future__ import annotations

@@ -12,6 +12,7 @@ import numpy
 from . import rps as rps_solver
 from .backsubstitution import backsubstitute
 from .inputs import columns, stacked
+from .newton import newton_step
 from .status import (
     COND_RTOL,
     FORWARD_SINGULAR,
@@ -83,14 +84,10 @@ def polish(spec, q, study, par, iterations=6):
         sub = x[rows]
         with numpy.errstate(all="ignore"):
             f, jac = evaluate(rows, sub)
-            jtj = numpy.swapaxes(jac, -1, -2) @ jac
-            jtf = numpy.swapaxes(jac, -1, -2) @ f[..., None]
-            ok = numpy.all(numpy.isfinite(jtj), axis=(-2, -1)) & numpy.all(
-                numpy.isfinite(jtf), axis=(-2, -1))
-            ok &= numpy.abs(numpy.linalg.det(numpy.where(ok[..., None, None], jtj,
-                                                         numpy.eye(n)))) > 0.0
-            safe = numpy.where(ok[..., None, None], jtj, numpy.eye(n))
-            step = numpy.linalg.solve(safe, numpy.where(ok[..., None, None], jtf, 0.0))[..., 0]
+            jt = numpy.swapaxes(jac, -1, -2)
+            jtj, jtf = jt @ jac, (jt @ f[..., None])[..., 0]
+            step, ok = newton_step(jtf, jtj, numpy.isfinite(jtj).all(axis=(-2, -1))
+                                   & numpy.isfinite(jtf).all(axis=-1))
             moving = ok & (numpy.abs(step) > STEP_RTOL * (1.0 + numpy.abs(sub))).any(axis=-1)
         x[rows] = numpy.where(ok[..., None], sub - step, sub)
         stopped = ~moving
@@ -158,8 +155,7 @@ def _scaled_step(js, fs, finite):
     gram, rhs = jt @ js, jt @ fs[..., None]
     trace = numpy.trace(gram, axis1=-2, axis2=-1)
     certified = finite & (numpy.linalg.det(gram) > CERTIFIED_GRAM * trace ** n)
-    step = numpy.linalg.solve(numpy.where(certified[..., None, None], gram, numpy.eye(n)),
-                              numpy.where(certified[..., None, None], rhs, 0.0))[..., 0]
+    step, _ = newton_step(rhs[..., 0], gram, certified)  # certified: det(G) > 0
     step[~finite] = numpy.nan
     cond_ok = certified.copy()
     hard = finite & ~certified

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy
 
+from .newton import newton_step
 from .status import FORWARD_SINGULAR, NO_REAL_SOLUTION, OK, OUTSIDE_CHART
 
 # u1 = (w + T) / (1 - T w) with T = tan(phi/2), phi = pi/2 + 0.1234: the eliminant is formed
@@ -304,16 +305,6 @@ def newton(k, theta, qk, par, pair, raw, active):
     converged = act & (numpy.abs(f) <= RESIDUAL_TOL * rawf).all(axis=-1)
     return (th.reshape(theta.shape), f.reshape(shape + (3,)), jac.reshape(shape + (3, 3)),
             converged.reshape(shape))
-
-
-def newton_step(f, jac, good):
-    """The Newton step J^-1 f where ``good`` and J is invertible (zero elsewhere), and
-    where it was taken."""
-    good = good & (numpy.abs(numpy.linalg.det(numpy.where(good[..., None, None], jac,
-                                                          numpy.eye(3)))) > 0.0)
-    step = numpy.linalg.solve(numpy.where(good[..., None, None], jac, numpy.eye(3)),
-                              numpy.where(good[..., None], f, 0.0)[..., None])[..., 0]
-    return step, good
 
 
 def last_step(k, theta, qk, par, pair):
