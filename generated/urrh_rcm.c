@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b2d9c5c9d9ce277d2fa3eac81cf92534648bd9ec68415647e723175bbaa1c82f
+ * Derivation hash: a723d12856750f7d7b418ff7f487e453d35cacd6facb28d3a66b44356a3f84e7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b2d9c5c9d9ce277d2fa3eac81cf92534648bd9ec68415647e723175bbaa1c82f";
+const char bonered_derivation_hash[] = "a723d12856750f7d7b418ff7f487e453d35cacd6facb28d3a66b44356a3f84e7";
 int bonered_abi(void) { return 3; }
 #endif
 
