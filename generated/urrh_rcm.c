@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a723d12856750f7d7b418ff7f487e453d35cacd6facb28d3a66b44356a3f84e7
+ * Derivation hash: ace982624968d19b917fdb1cdcba0085caf497a9ab7cede3eb0cac10df5795d2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a723d12856750f7d7b418ff7f487e453d35cacd6facb28d3a66b44356a3f84e7";
+const char bonered_derivation_hash[] = "ace982624968d19b917fdb1cdcba0085caf497a9ab7cede3eb0cac10df5795d2";
 int bonered_abi(void) { return 3; }
 #endif
 
