@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d8f33f1558f7052da1fa7b1c88329b1a49165f8011d627950795643dd396b3eb
+ * Derivation hash: fd9e8ac0bc468f270f830a46716cd67d75be9bfc9ae454fcfe8a36ad9a0ee987
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d8f33f1558f7052da1fa7b1c88329b1a49165f8011d627950795643dd396b3eb";
+const char bonered_derivation_hash[] = "fd9e8ac0bc468f270f830a46716cd67d75be9bfc9ae454fcfe8a36ad9a0ee987";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5e4b0ff59975f1a7c0b315f06725cd537ad619ebae5b78a7413c621de4b3b0cd
+ * Derivation hash: 29e62c1bd66c9a2d23fdbe57443a3ea6b1c87fb3769c4b10b43a525fe891ebaf
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5e4b0ff59975f1a7c0b315f06725cd537ad619ebae5b78a7413c621de4b3b0cd";
+const char bonered_derivation_hash[] = "29e62c1bd66c9a2d23fdbe57443a3ea6b1c87fb3769c4b10b43a525fe891ebaf";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f3520b73493ef69389dd108580b97952db63a1bdc82f2a987c2de05b50e08829
+ * Derivation hash: 58919dd45222ae4c3f74c71f36d8f1d8718286ae463b3f9c208d9c66a824ff4a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f3520b73493ef69389dd108580b97952db63a1bdc82f2a987c2de05b50e08829";
+const char bonered_derivation_hash[] = "58919dd45222ae4c3f74c71f36d8f1d8718286ae463b3f9c208d9c66a824ff4a";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7b3dacb61a5048e4319f5585af3c9ce111a88cd771e8164993bf98138be1f3fb
+ * Derivation hash: ec8f9bca9c236e29545beebb73783e5e8ff6ed83dba899004a825ed46547d079
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7b3dacb61a5048e4319f5585af3c9ce111a88cd771e8164993bf98138be1f3fb";
+const char bonered_derivation_hash[] = "ec8f9bca9c236e29545beebb73783e5e8ff6ed83dba899004a825ed46547d079";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ace982624968d19b917fdb1cdcba0085caf497a9ab7cede3eb0cac10df5795d2
+ * Derivation hash: e42c339763df0b80b5c985eeb5ae046836bf1bf988abfc88c41084d9759874e2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ace982624968d19b917fdb1cdcba0085caf497a9ab7cede3eb0cac10df5795d2";
+const char bonered_derivation_hash[] = "e42c339763df0b80b5c985eeb5ae046836bf1bf988abfc88c41084d9759874e2";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -87,3 +87,60 @@ def jacobian_fd(pose, h=1e-6, **geo):
         step[i] = h
         cols.append((joints(pose + step, **geo)[0] - joints(pose - step, **geo)[0]) / (2 * h))
     return np.stack(cols, axis=1)
+
+
+def _stage_strokes(gp, x2, y2, rb=200.0):
+    """q4..q6 of the planar stage at (x2, y2, gamma_p) in B: the sliders' lines intersected
+    (as in :func:`joints`)."""
+    low = _corners(rb, [-30, 90, 210])[:, :2]
+    low_dir = [low[1] - low[0], low[2] - low[1], low[0] - low[2]]
+    up = _corners(rb, [30, 150, 270])[:, :2]
+    up_dir = [up[1] - up[0], up[2] - up[1], up[0] - up[2]]
+    rz = np.array([[np.cos(gp), -np.sin(gp)], [np.sin(gp), np.cos(gp)]])
+    out = []
+    for k in range(3):
+        e1 = low_dir[k] / np.linalg.norm(low_dir[k])
+        e2 = rz @ (up_dir[k] / np.linalg.norm(up_dir[k]))
+        out.append(float(np.linalg.solve(np.column_stack([e1, -e2]),
+                                         np.array([x2, y2]) + rz @ up[k] - low[k])[0]))
+    return out
+
+
+def all_joints(pose, ra=200.0, rb=200.0, n=20001):
+    """The joints (|q1|..|q3|, q4..q6) of every split of the pose into B and the planar stage
+    (d = 0): B = R_E Rz(-gamma_p) with (x2, y2) from the three plane conditions (linear in
+    them), so the splits are the zeros of the least-squares residual over gamma_p, found by
+    a scan of ``n`` values and golden-section refinement.  Unlike :func:`platform_b` (one
+    start), no split is missed: a pose of forward kinematics is an assembly of its joints
+    exactly when one of these gives them back."""
+    re, te = end_effector(pose)
+    a_pts, b_loc = _corners(ra, [-30, 90, 210]), _corners(rb, [-30, 90, 210])
+    ang = np.radians([-30, 90, 210])
+    tang = np.stack([-np.sin(ang), np.cos(ang), np.zeros(3)], axis=1)
+
+    def split(gp):
+        gp = np.atleast_1d(gp)
+        rb_ = np.einsum("ij,njk->nik", re, Rotation.from_euler("z", -gp[:, None]).as_matrix())
+        a = -np.einsum("nik,li->nlk", rb_[:, :, :2], tang)  # plane k: a (x2, y2) = b
+        b = -np.einsum("nli,li->nl", te + np.einsum("nij,lj->nli", rb_, b_loc) - a_pts, tang)
+        xy = np.linalg.solve(np.einsum("nli,nlj->nij", a, a),
+                             np.einsum("nli,nl->ni", a, b)[..., None])[..., 0]
+        return rb_, xy, np.linalg.norm(np.einsum("nlk,nk->nl", a, xy) - b, axis=1)
+
+    grid = np.linspace(-np.pi, np.pi, n)
+    res = split(grid)[2]
+    out = []
+    for i in np.flatnonzero((res[1:-1] <= res[:-2]) & (res[1:-1] <= res[2:])) + 1:
+        lo, hi = grid[i - 1], grid[i + 1]
+        for _ in range(80):
+            m1, m2 = lo + 0.382 * (hi - lo), lo + 0.618 * (hi - lo)
+            lo, hi = (lo, m2) if split(m1)[2][0] < split(m2)[2][0] else (m1, hi)
+        gp = 0.5 * (lo + hi)
+        rb_, xy, r = split(gp)
+        if r[0] > 1e-9 * max(1.0, float(np.abs(te).max())):
+            continue
+        rb_, (x2, y2) = rb_[0], xy[0]
+        tb = te - rb_ @ np.array([x2, y2, 0.0])
+        legs = [float(np.linalg.norm(tb + rb_ @ b_loc[k] - a_pts[k])) for k in range(3)]
+        out.append(np.array(legs + _stage_strokes(gp, x2, y2, rb)))
+    return out

@@ -118,6 +118,58 @@ def test_forward_singularities_lose_no_pose(name, seed, lines, crossings):
     assert checked >= 7 * crossings, checked
 
 
+# ----------------------------------------------------------------- the 3-RPS's half-turn mode
+def _assembly_error(ind, pose, q):
+    """How far the joints of the pose's nearest split (the independent model's every split
+    into B and the planar stage) are from ``q``, relative to the largest joint."""
+    return min((np.abs(np.abs(j) - np.abs(q)).max() for j in ind.all_joints(pose)),
+               default=np.inf) / np.abs(q).max()
+
+
+@pytest.mark.parametrize("q", [(-532.24, 526.74, 309.13, -139.62, 525.94, 233.11),
+                               (210.0, 210.0, 210.0, 230.94010768, 230.94010768,
+                                230.94010768)])
+def test_tripod_planar_ok_poses_are_assemblies_of_their_joints(q):
+    """The 3-RPS has a second operation mode, x0 = 0 (the platform turned by a half-turn), off
+    the chart x0 = 1 of its Study coordinates.  At the first q, 4 of its 16 assemblies lie on
+    it: there 1 + trace R is rounding noise, and the chart gave finite, meaningless
+    coordinates (x = (-1, -2, -0.75)), three poses of them returned under OK, 3-130 mm from
+    every assembly.  Every OK pose must split into B and the planar stage with these joints
+    (tests/independent_tripod_planar.py, every split); the half-turn ones are OUTSIDE_CHART
+    with NaN.  The second q is home."""
+    import independent_tripod_planar as ind
+
+    m = _module("tripod_planar")
+    q = np.array(q)
+    sols, status = m.fk(q), m.fk_status(q)
+    assert (status == m.OK).sum() >= 4
+    for pose in sols[status == m.OK]:
+        assert _assembly_error(ind, pose, q) < 1e-9, pose
+    assert np.isnan(sols[status == m.OUTSIDE_CHART]).all()
+
+
+def test_tripod_planar_ok_poses_are_assemblies_far_from_home():
+    """The same on joints of random poses up to 80 mm and 1 rad from home, every working
+    mode (negative strokes too: the algebra's joints are signed); before CHART_TOL, 6 of the
+    98 OK modes of these 12 configurations were no assembly of their joints (4-17 of about
+    100 for 23 of 30 seeds)."""
+    import independent_tripod_planar as ind
+
+    m = _module("tripod_planar")
+    rng = np.random.default_rng(0)
+    home = np.array(m.HOME)
+    poses = home + rng.uniform(-1, 1, (40, 6)) * np.array([80, 80, 80, 1, 1, 1])
+    q = np.concatenate([m.ik(poses[k::8], mode=k, limits=False) for k in range(8)])
+    q = q[np.isfinite(q).all(axis=-1)][:12]
+    sols, status = m.fk(q), m.fk_status(q)
+    checked = 0
+    for c in range(len(q)):
+        for pose in sols[c][status[c] == m.OK]:
+            assert _assembly_error(ind, pose, q[c]) < 1e-9, (q[c], pose)
+            checked += 1
+    assert checked >= 40, checked
+
+
 # ----------------------------------------------------------------- polish hands verify its system
 def _configurations(m, rng, tries, keep, perturbed, spread):
     """Joints (user's units) of up to ``keep`` random poses around home that the IK solves

@@ -40,6 +40,14 @@ PARTNER_STEPS = (3e-4, 3e-3, 3e-2, 0.3)
 # how many nearly singular modes (singular ratio below PARTNER_RATIO) are searched
 PARTNER_MODES = 4
 PARTNER_RATIO = 1e-2
+# the chart x0 = 1 of the platform's Study coordinates, x_i = (R_kj - R_jk) / (1 + trace R):
+# with 1 + trace R = 4 x0^2 (unit quaternion) below this, the rounding of R (about 1e-15)
+# makes x_i wrong by more than 1e-9 relative, and on the 3-RPS's other operation mode (x0 =
+# 0, the platform turned by a half-turn) numerator and denominator are both rounding noise:
+# finite numbers with no meaning (measured on tripod_planar, q = (-532.24, 526.74, 309.13,
+# -139.62, 525.94, 233.11): 1 + trace R of 1e-16 gave x = (-1, -2, -0.75) under OK).  Such
+# a mode is OUTSIDE_CHART
+CHART_TOL = 1e-6
 
 
 def poly_mul(a, b):
@@ -251,7 +259,9 @@ def solve(k, q, par):
                for v in k.study(*[rot[..., i, j] for i in range(3) for j in range(3)],
                                    *[trans[..., i] for i in range(3)])]
         study = numpy.where(valid[..., None], numpy.stack(out, axis=-1), numpy.nan)
-        half_turn = valid & ~numpy.isfinite(study).all(axis=-1)
+        chart = 1.0 + numpy.trace(rot, axis1=-2, axis2=-1)  # 4 x0^2
+        half_turn = valid & (~numpy.isfinite(study).all(axis=-1) | ~(chart > CHART_TOL))
+        study = numpy.where(half_turn[..., None], numpy.nan, study)
         status = numpy.where(half_turn, OUTSIDE_CHART, status).astype(numpy.int8)
     return study, status
 
