@@ -727,7 +727,26 @@ def _statics_benchmark(m, poses, rng, hw):
         row[f"{method}_statics_ratio_vs_hand_written"] = t_hand / t
         row[f"{method}_max_rel_difference_statics"] = _max_rel(
             m.static_efforts(poses, load, method=method), ref)
+    # memory bounded at any batch size (runtime.model.STATICS_CHUNK, FREE_BODY_CHUNK): the
+    # peak of numpy's allocations at two batch sizes, ten times apart
+    for method, sizes in (("virtual_work", (10_000, 100_000)), ("free_body", (1_000, 10_000))):
+        for k in sizes:
+            row[f"{method}_statics_peak_mb_at_{k}_poses"] = _peak_mb(
+                lambda f=method, k=k: m.static_efforts(poses[:k], load[:k], method=f))
     return row
+
+
+def _peak_mb(fn) -> float:
+    """The peak of the memory allocated while ``fn()`` runs (tracemalloc: numpy reports its
+    arrays' data to it), in MB."""
+    import tracemalloc
+
+    tracemalloc.start()
+    try:
+        fn()
+        return tracemalloc.get_traced_memory()[1] / 1e6
+    finally:
+        tracemalloc.stop()
 
 
 def reachable_urrh_rcm(n, rng):

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fd9e8ac0bc468f270f830a46716cd67d75be9bfc9ae454fcfe8a36ad9a0ee987
+ * Derivation hash: e6466d8277350f48162eac3fed817254cdee26a45af0f64075e1b251b7c1c602
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fd9e8ac0bc468f270f830a46716cd67d75be9bfc9ae454fcfe8a36ad9a0ee987";
+const char bonered_derivation_hash[] = "e6466d8277350f48162eac3fed817254cdee26a45af0f64075e1b251b7c1c602";
 int bonered_abi(void) { return 3; }
 #endif
 

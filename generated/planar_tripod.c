@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 29e62c1bd66c9a2d23fdbe57443a3ea6b1c87fb3769c4b10b43a525fe891ebaf
+ * Derivation hash: f94e3090017f1a1c7b7ce80accee505a0dcdee49dbb11561d2271a2768177aa2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "29e62c1bd66c9a2d23fdbe57443a3ea6b1c87fb3769c4b10b43a525fe891ebaf";
+const char bonered_derivation_hash[] = "f94e3090017f1a1c7b7ce80accee505a0dcdee49dbb11561d2271a2768177aa2";
 int bonered_abi(void) { return 3; }
 #endif
 

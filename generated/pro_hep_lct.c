@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 58919dd45222ae4c3f74c71f36d8f1d8718286ae463b3f9c208d9c66a824ff4a
+ * Derivation hash: 7ac077b0b1d5d38e520f97793dfd2502833613870ee52ff4f82fdcda3e0d8ada
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "58919dd45222ae4c3f74c71f36d8f1d8718286ae463b3f9c208d9c66a824ff4a";
+const char bonered_derivation_hash[] = "7ac077b0b1d5d38e520f97793dfd2502833613870ee52ff4f82fdcda3e0d8ada";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ec8f9bca9c236e29545beebb73783e5e8ff6ed83dba899004a825ed46547d079
+ * Derivation hash: 69bde4e941cf815ca6bc7d721b37ebb26d1efda20efdb594a8505f156e8b4aa3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ec8f9bca9c236e29545beebb73783e5e8ff6ed83dba899004a825ed46547d079";
+const char bonered_derivation_hash[] = "69bde4e941cf815ca6bc7d721b37ebb26d1efda20efdb594a8505f156e8b4aa3";
 int bonered_abi(void) { return 3; }
 #endif
 

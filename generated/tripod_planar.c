@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d788b515bdf5b8d80119e6f6a53d7584e47e3401e45b1a5e3206ff2933202396
+ * Derivation hash: 9f50943daca784eabc14b8b7d31666af84fa5c3f8c2f6ebeb29af9bd9f478323
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d788b515bdf5b8d80119e6f6a53d7584e47e3401e45b1a5e3206ff2933202396";
+const char bonered_derivation_hash[] = "9f50943daca784eabc14b8b7d31666af84fa5c3f8c2f6ebeb29af9bd9f478323";
 int bonered_abi(void) { return 3; }
 #endif
 

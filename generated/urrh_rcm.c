@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e42c339763df0b80b5c985eeb5ae046836bf1bf988abfc88c41084d9759874e2
+ * Derivation hash: a9f03ec2a4ca343cda0f40aef7f4ffeb496f894c787a2d128d9ce857fd3a66a1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e42c339763df0b80b5c985eeb5ae046836bf1bf988abfc88c41084d9759874e2";
+const char bonered_derivation_hash[] = "a9f03ec2a4ca343cda0f40aef7f4ffeb496f894c787a2d128d9ce857fd3a66a1";
 int bonered_abi(void) { return 3; }
 #endif
 

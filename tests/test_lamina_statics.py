@@ -126,3 +126,92 @@ def test_link_weights_need_one_closure_on_the_fixed_base():
     mech = dataclasses.replace(pt.MECHANISM, link_weights=(weight,))
     with pytest.raises(MechanismDefinitionError, match="one actuated closure"):
         validate(mech)
+
+
+@pytest.mark.parametrize("method", ["virtual_work", "free_body"])
+def test_efforts_in_chunks_are_the_efforts_in_one_piece(method, monkeypatch):
+    """static_efforts evaluates STATICS_CHUNK (FREE_BODY_CHUNK) poses at a time (100,000
+    poses in one piece took 16 GB by the free-body method): with chunks of 7 (a leading
+    shape of two axes, a load broadcast against the poses, unreachable and NaN poses among
+    them) the efforts are those of one piece, to the bit."""
+    from bonered_alg.runtime import model as runtime_model
+    from bonered_alg.runtime import statics
+
+    # numpy's IK and Jacobian: the compiled ones agree with numpy to rounding, and their last
+    # bits can change with the size of the batch (its vector loops and their remainder)
+    monkeypatch.setenv("BONERED_ALG_FAST", "0")
+    h, F = _sample(60, 7)
+    h[5] = [0.0, 500.0, 50.0]  # out of reach
+    h[11, 1] = np.nan
+    h = h.reshape(2, 30, 3)
+    size = "FREE_BODY_CHUNK" if method == "free_body" else "STATICS_CHUNK"
+    monkeypatch.setattr(runtime_model, size, 10 ** 9)
+    whole = m.static_efforts(h, F[:30], method=method)
+    monkeypatch.setattr(runtime_model, size, 7)
+    sizes = []
+    name = "free_body" if method == "free_body" else "efforts"
+    inner = getattr(statics, name)
+    monkeypatch.setattr(statics, name, lambda model, pose, *a: (sizes.append(len(pose)),
+                                                                inner(model, pose, *a))[1])
+    assert np.array_equal(m.static_efforts(h, F[:30], method=method), whole, equal_nan=True)
+    assert sizes == [7] * 8 + [4]  # 60 poses in chunks of 7
+    assert whole.shape == (2, 30, 3)
+    assert np.isnan(whole[0, 5]).all() and np.isnan(whole[0, 11]).all()
+    assert np.isfinite(whole).sum() == 3 * 58
+
+
+def test_passive_joints_and_link_poses_in_chunks(monkeypatch):
+    """passive_joints and link_poses evaluate CHUNK poses at a time: chunks of 5 give the
+    values of one piece, to the bit (with the numpy IK)."""
+    from bonered_alg.runtime import model as runtime_model
+
+    monkeypatch.setenv("BONERED_ALG_FAST", "0")  # numpy's IK: the same bits at any batch size
+    h, _ = _sample(40, 8)
+    h[3, 0] = np.nan
+    near_home = np.array(urrh_rcm.HOME) + np.random.default_rng(2).normal(
+        scale=[0.2, 0.2, 5.0, 0.5], size=(40, 4))
+    sizes = []
+    inner = runtime_model.Model._passive
+
+    def spy(self, pose, *args):
+        sizes.append(len(pose))
+        return inner(self, pose, *args)
+
+    for mod, poses in ((m, h), (urrh_rcm, near_home)):
+        monkeypatch.setattr(runtime_model, "CHUNK", 10 ** 9)
+        whole = mod.passive_joints(poses), mod.link_poses(poses)
+        monkeypatch.setattr(runtime_model, "CHUNK", 5)
+        monkeypatch.setattr(runtime_model.Model, "_passive", spy)
+        sizes.clear()
+        assert np.array_equal(mod.passive_joints(poses), whole[0], equal_nan=True)
+        assert np.array_equal(mod.link_poses(poses), whole[1], equal_nan=True)
+        assert sizes == [5] * 16  # 40 poses in chunks of 5, twice
+        monkeypatch.setattr(runtime_model.Model, "_passive", inner)
+        assert np.isfinite(whole[0]).any() and np.isfinite(whole[1]).any()
+
+
+def test_a_singular_row_does_not_change_the_others():
+    """The statics' linear solves per row: an exactly singular system gives NaN (or the
+    pseudo-inverse's least-squares solution) on its own row, not an error for the batch or
+    another method for the other rows; the other rows are, to the bit, what they are
+    alone."""
+    from bonered_alg.runtime import statics
+
+    rng = np.random.default_rng(4)
+    a = rng.normal(size=(5, 3, 3))
+    b = rng.normal(size=(5, 3, 1))
+    a[2] = [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]]  # rank 2
+    with pytest.raises(np.linalg.LinAlgError):
+        np.linalg.solve(a, b)
+    x = statics._solve_or_nan(a, b)
+    assert np.isnan(x[2]).all()
+    for k in (0, 1, 3, 4):
+        assert np.array_equal(x[k], np.linalg.solve(a[k], b[k]))
+    # least squares: (6, 2) systems, one whose R has a zero on its diagonal
+    a = rng.normal(size=(4, 6, 2))
+    b = rng.normal(size=(4, 6, 3))
+    a[1, :, 1] = 0.0
+    x = statics._least_squares(a, b)
+    for k in (0, 2, 3):
+        assert np.array_equal(x[k], statics._least_squares(a[k:k + 1], b[k:k + 1])[0])
+    assert np.allclose(x[1], np.linalg.pinv(a[1]) @ b[1])

@@ -71,13 +71,40 @@ def spatial_twists(g, dg):
 
 def _least_squares(a, b):
     """x with a x = b in the least-squares sense, per row: (..., m, n) and (..., m, k),
-    n <= m, by QR (R x = Q^T b); by the pseudo-inverse where some R is singular (the
-    caller's residual check then flags the rows that have no solution)."""
+    n <= m, by QR (R x = Q^T b); by the pseudo-inverse on the rows whose R is singular (a
+    zero on its diagonal, where LAPACK's solve of a triangular R stops; the caller's
+    residual check then flags the rows that have no solution).  Each row's numbers are
+    those it would get alone: no row changes method because another one is singular."""
     q, r = numpy.linalg.qr(a)
+    qtb = numpy.swapaxes(q, -1, -2) @ b
     try:
-        return numpy.linalg.solve(r, numpy.swapaxes(q, -1, -2) @ b)
+        return numpy.linalg.solve(r, qtb)
     except numpy.linalg.LinAlgError:
-        return numpy.linalg.pinv(a) @ b
+        regular = numpy.all(numpy.diagonal(r, axis1=-2, axis2=-1) != 0.0, axis=-1)
+        out = numpy.empty(qtb.shape)
+        out[regular] = numpy.linalg.solve(r[regular], qtb[regular])
+        out[~regular] = numpy.linalg.pinv(a[~regular]) @ b[~regular]
+        return out
+
+
+def _solve_or_nan(a, b):
+    """``numpy.linalg.solve(a, b)`` (..., n, n), (..., n, k), with NaN on the rows whose
+    matrix is exactly singular (LAPACK finds a zero pivot) instead of an error for all of
+    them: those rows are then solved one by one (each row's numbers are its own either
+    way)."""
+    try:
+        return numpy.linalg.solve(a, b)
+    except numpy.linalg.LinAlgError:
+        lead = numpy.broadcast_shapes(a.shape[:-2], b.shape[:-2])
+        a = numpy.broadcast_to(a, lead + a.shape[-2:])
+        b = numpy.broadcast_to(b, lead + b.shape[-2:])
+        out = numpy.full(b.shape, numpy.nan)
+        for idx in numpy.ndindex(out.shape[:-2]):
+            try:
+                out[idx] = numpy.linalg.solve(a[idx], b[idx])
+            except numpy.linalg.LinAlgError:
+                pass
+        return out
 
 
 def body_point(g, local):
@@ -160,7 +187,7 @@ def efforts(model, pose, load, q, passive, J, par):
             twist = tx if link < 0 else twists[link]
             Q = Q - gs * point_jacobian(twist, p)[..., 2, :]  # W = (0, 0, -G share)
         safe = numpy.where(ok[..., None, None], J, numpy.eye(J.shape[-1]))
-        tau = -numpy.linalg.solve(numpy.swapaxes(safe, -1, -2), Q[..., None])[..., 0]
+        tau = -_solve_or_nan(numpy.swapaxes(safe, -1, -2), Q[..., None])[..., 0]
     return numpy.where(ok[..., None], tau, numpy.nan)
 
 
