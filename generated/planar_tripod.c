@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f94e3090017f1a1c7b7ce80accee505a0dcdee49dbb11561d2271a2768177aa2
+ * Derivation hash: 96a3383b181745e4a6ffa71aca9a7dab9b72defdcd7a4178d6bb085a78fb83bb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f94e3090017f1a1c7b7ce80accee505a0dcdee49dbb11561d2271a2768177aa2";
+const char bonered_derivation_hash[] = "96a3383b181745e4a6ffa71aca9a7dab9b72defdcd7a4178d6bb085a78fb83bb";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7ac077b0b1d5d38e520f97793dfd2502833613870ee52ff4f82fdcda3e0d8ada
+ * Derivation hash: b8629e3be2e7a5be3e688632e57463b2e958f8ac1979be688bed183c5388dad9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7ac077b0b1d5d38e520f97793dfd2502833613870ee52ff4f82fdcda3e0d8ada";
+const char bonered_derivation_hash[] = "b8629e3be2e7a5be3e688632e57463b2e958f8ac1979be688bed183c5388dad9";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9f50943daca784eabc14b8b7d31666af84fa5c3f8c2f6ebeb29af9bd9f478323
+ * Derivation hash: f2a4b7135ef3162a4571e05b10bbf7194d8b193cc3816ddd4733ed3ab16a425d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9f50943daca784eabc14b8b7d31666af84fa5c3f8c2f6ebeb29af9bd9f478323";
+const char bonered_derivation_hash[] = "f2a4b7135ef3162a4571e05b10bbf7194d8b193cc3816ddd4733ed3ab16a425d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a9f03ec2a4ca343cda0f40aef7f4ffeb496f894c787a2d128d9ce857fd3a66a1
+ * Derivation hash: b86661b1e8afc40c4c1f10cd2bda865998a30d40750209473bef15f69d313693
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a9f03ec2a4ca343cda0f40aef7f4ffeb496f894c787a2d128d9ce857fd3a66a1";
+const char bonered_derivation_hash[] = "b86661b1e8afc40c4c1f10cd2bda865998a30d40750209473bef15f69d313693";
 int bonered_abi(void) { return 3; }
 #endif
 

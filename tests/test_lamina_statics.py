@@ -160,36 +160,6 @@ def test_efforts_in_chunks_are_the_efforts_in_one_piece(method, monkeypatch):
     assert np.isfinite(whole).sum() == 3 * 58
 
 
-def test_passive_joints_and_link_poses_in_chunks(monkeypatch):
-    """passive_joints and link_poses evaluate CHUNK poses at a time: chunks of 5 give the
-    values of one piece, to the bit (with the numpy IK)."""
-    from bonered_alg.runtime import model as runtime_model
-
-    monkeypatch.setenv("BONERED_ALG_FAST", "0")  # numpy's IK: the same bits at any batch size
-    h, _ = _sample(40, 8)
-    h[3, 0] = np.nan
-    near_home = np.array(urrh_rcm.HOME) + np.random.default_rng(2).normal(
-        scale=[0.2, 0.2, 5.0, 0.5], size=(40, 4))
-    sizes = []
-    inner = runtime_model.Model._passive
-
-    def spy(self, pose, *args):
-        sizes.append(len(pose))
-        return inner(self, pose, *args)
-
-    for mod, poses in ((m, h), (urrh_rcm, near_home)):
-        monkeypatch.setattr(runtime_model, "CHUNK", 10 ** 9)
-        whole = mod.passive_joints(poses), mod.link_poses(poses)
-        monkeypatch.setattr(runtime_model, "CHUNK", 5)
-        monkeypatch.setattr(runtime_model.Model, "_passive", spy)
-        sizes.clear()
-        assert np.array_equal(mod.passive_joints(poses), whole[0], equal_nan=True)
-        assert np.array_equal(mod.link_poses(poses), whole[1], equal_nan=True)
-        assert sizes == [5] * 16  # 40 poses in chunks of 5, twice
-        monkeypatch.setattr(runtime_model.Model, "_passive", inner)
-        assert np.isfinite(whole[0]).any() and np.isfinite(whole[1]).any()
-
-
 def test_a_singular_row_does_not_change_the_others():
     """The statics' linear solves per row: an exactly singular system gives NaN (or the
     pseudo-inverse's least-squares solution) on its own row, not an error for the batch or

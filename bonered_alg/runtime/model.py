@@ -390,7 +390,8 @@ class Model:
         a violated limit of no actuated joint (a passive angle) on every joint that has no
         failure of its own.  ``ik`` returns a configuration as a whole or not at all."""
         pose, mode, par, limits = self._ik_args("ik_joint_status", pose, mode, limits, params)
-        return self._joint_report(pose, mode, par, limits)[0]
+        return _chunked(pose, par, lambda p, pr: (self._joint_report(p, mode, pr, limits)[0],)
+                        )[0]
 
     def ik_explain(self, pose, mode=0, limits=True, params=None):
         """Why ``ik`` returns NaN (or warns) at each pose, in words: a str for one pose,
@@ -457,9 +458,13 @@ class Model:
         par = check.parameters(self, "limit_values", params or {})
         if not self.limits:
             return {}
-        values = self.limit_kernel_values(pose, q, par)
-        return {lim[0]: numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
-                for lim, v in zip(self.limits, values)}
+
+        def chunk(p, qq, pr):
+            return tuple(numpy.broadcast_to(numpy.asarray(v, dtype=float), p.shape[:-1])
+                         for v in self.limit_kernel_values(p, qq, pr))
+
+        values = _chunked_with_joints(pose, q, par, chunk)
+        return {lim[0]: v for lim, v in zip(self.limits, values)}
 
     # ------------------------------------------------------------ velocity model
     def _matrix(self, kern, m, pose, q, par):
@@ -472,8 +477,13 @@ class Model:
     def input_jacobian(self, pose, q, params=None):
         pose = check.pose(self, "input_jacobian", pose)
         t = self.algebraic(check.joints(self, "input_jacobian", q, pose.shape[:-1]))
-        ji = self._matrix(self.ji, len(self.joints), pose, t,
-                          check.parameters(self, "input_jacobian", params or {}))
+        par = check.parameters(self, "input_jacobian", params or {})
+        return _chunked_with_joints(pose, t, par, lambda p, tt, pr: (
+            self._input_jacobian(p, tt, pr),))[0]
+
+    def _input_jacobian(self, pose, t, par):
+        """:meth:`input_jacobian` of one chunk, ``t`` the algebra's joints."""
+        ji = self._matrix(self.ji, len(self.joints), pose, t, par)
         if self.angles:  # dG/dq = dG/dt dt/dq, dt/dq = (1 + t^2) / 2
             idx = list(self.angles)
             ji[..., :, idx] *= ((1.0 + t[..., idx] ** 2) / 2.0)[..., None, :]
@@ -482,8 +492,9 @@ class Model:
     def output_jacobian(self, pose, q, params=None):
         pose = check.pose(self, "output_jacobian", pose)
         q = self.algebraic(check.joints(self, "output_jacobian", q, pose.shape[:-1]))
-        return self._matrix(self.jo_study, len(self.study_pose), pose, q,
-                            check.parameters(self, "output_jacobian", params or {}))
+        par = check.parameters(self, "output_jacobian", params or {})
+        return _chunked_with_joints(pose, q, par, lambda p, qq, pr: (
+            self._matrix(self.jo_study, len(self.study_pose), p, qq, pr),))[0]
 
     def _jac_values(self, pose, q, par, into=None, row_scale=None, shared=None):
         """The Jacobian kernel's outputs (pivots, row scales, dq/dX row-major), one row
@@ -588,9 +599,16 @@ class Model:
 
     def singularities(self, pose, q, params=None):
         pose = check.pose(self, "singularities", pose)
-        shape = pose.shape[:-1]
-        q = self.algebraic(check.joints(self, "singularities", q, shape))
+        q = self.algebraic(check.joints(self, "singularities", q, pose.shape[:-1]))
         par = check.parameters(self, "singularities", params or {})
+        names = [*self.singularity_kernels, *self.singularity_matrices]
+        values = _chunked_with_joints(pose, q, par, lambda p, qq, pr: tuple(
+            self._singularities(p, qq, pr).values()))
+        return dict(zip(names, values))
+
+    def _singularities(self, pose, q, par):
+        """:meth:`singularities` of one chunk, ``q`` the algebra's joints."""
+        shape = pose.shape[:-1]
         with numpy.errstate(all="ignore"):
             study = self.study_values(pose, par)
             qc = columns(q)
@@ -784,15 +802,28 @@ def _chunked(pose, par, fn, size=None):
     shape (k, len(POSE)), the results (arrays of k leading rows, any strides, or None)
     copied into contiguous arrays of the poses' leading shape; array parameters are split
     alike."""
+    return _rows_in_chunks((pose,), par, fn, size)
+
+
+def _chunked_with_joints(pose, q, par, fn, size=None):
+    """:func:`_chunked` over poses (..., len(POSE)) and their joints ``q`` (the same leading
+    shape): ``fn(pose, q, par)`` on each chunk of both."""
+    return _rows_in_chunks((pose, q), par, fn, size)
+
+
+def _rows_in_chunks(arrays, par, fn, size=None):
+    """``fn(*chunks, par)`` over chunks of at most ``size`` (default CHUNK) rows of
+    ``arrays`` (the same leading shape, each chunk (k, last axis)), the results copied into
+    contiguous arrays of that leading shape (:func:`_chunked`)."""
     size = CHUNK if size is None else size
-    shape = pose.shape[:-1]
+    shape = arrays[0].shape[:-1]
     n = int(numpy.prod(shape, dtype=numpy.int64))
-    flat = pose.reshape(n, pose.shape[-1])
+    flats = [a.reshape(n, a.shape[-1]) for a in arrays]
     par_of_chunk = _parameter_chunks(par, shape, n)
     outs = None
     for lo in range(0, max(n, 1), size):  # an empty batch: one empty chunk
         hi = min(n, lo + size)
-        part = fn(flat[lo:hi], par_of_chunk(lo, hi))
+        part = fn(*(f[lo:hi] for f in flats), par_of_chunk(lo, hi))
         if outs is None:
             outs = [None if r is None else numpy.empty((n,) + r.shape[1:], dtype=r.dtype)
                     for r in part]
