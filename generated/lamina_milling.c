@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1acc85e0181431803aa10de1e04940b74d2191028253e743ebd0b39708945291
+ * Derivation hash: 05718a5843132ee0edf9f1902c405b77502a99040d546e640984cfcd7138e38a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1acc85e0181431803aa10de1e04940b74d2191028253e743ebd0b39708945291";
+const char bonered_derivation_hash[] = "05718a5843132ee0edf9f1902c405b77502a99040d546e640984cfcd7138e38a";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -187,10 +187,11 @@ BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restri
             status_out[i] = (signed char)ST[i];
 }
 
-static void solve_block(int m, const double *restrict pose, const double *restrict par,
-                        int mode, int limits, double *restrict q_out,
-                        signed char *restrict status_out, double *restrict jac_out,
-                        int stream, int public)
+BF_NOIPA static void solve_block(int m, const double *restrict pose,
+                                 const double *restrict par, int mode, int limits,
+                                 double *restrict q_out,
+                                 signed char *restrict status_out,
+                                 double *restrict jac_out, int stream, int public)
 {
     double P[3][BF_BLOCK], S[3][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
@@ -239,9 +240,9 @@ static void solve_block(int m, const double *restrict pose, const double *restri
                jac_out, stream, public);
 }
 
-static void solve_all_block(int m, const double *restrict pose,
-                            const double *restrict par, int limits,
-                            double *restrict q_out, int public)
+BF_NOIPA static void solve_all_block(int m, const double *restrict pose,
+                                     const double *restrict par, int limits,
+                                     double *restrict q_out, int public)
 {
     double P[3][BF_BLOCK], S[3][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
@@ -382,9 +383,24 @@ void bonered_solve_all(long n, const double *pose, const double *par_in, int lim
     double par[21];
     for (int k = 0; k < 21; k++)
         par[k] = par_in[k];
+    if (n > 0 && n < BF_LANES) {  /* padded to BF_LANES poses (bonered_fast.h) */
+        double pp[BF_LANES * 3], qq[BF_LANES * 24];
+        for (int i = 0; i < BF_LANES; i++)
+            for (int k = 0; k < 3; k++)
+                pp[i * 3 + k] = pose[(i < n ? i : n - 1) * 3 + k];
+        solve_all_block(BF_LANES, pp, par, limits, qq, public);
+        for (long k = 0; k < n * 24; k++)
+            q[k] = qq[k];
+        return;
+    }
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
-        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
-        solve_all_block(m, pose + lo * 3, par, limits, q + lo * 24, public);
+        long start[2] = {lo};
+        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};
+        /* a partial last block in whole lanes (bonered_fast.h) */
+        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;
+        for (int b = 0; b < blocks; b++)
+            solve_all_block(size[b], pose + start[b] * 3, par, limits,
+                            q + start[b] * 24, public);
     }
 }
 
@@ -399,10 +415,33 @@ void bonered_solve(long n, const double *pose, const double *par_in, int mode,
         par[k] = par_in[k];
     /* a Jacobian too large for the cache: streamed (bonered_fast.h) */
     int stream = jac && n * (long)sizeof(double) * 9 >= BF_STREAM_BYTES;
+    if (n > 0 && n < BF_LANES) {  /* padded to BF_LANES poses (bonered_fast.h) */
+        double pp[BF_LANES * 3], qq[BF_LANES * 3], jj[BF_LANES * 9];
+        signed char ss[BF_LANES];
+        for (int i = 0; i < BF_LANES; i++)
+            for (int k = 0; k < 3; k++)
+                pp[i * 3 + k] = pose[(i < n ? i : n - 1) * 3 + k];
+        solve_block(BF_LANES, pp, par, mode, limits, qq, ss, jac ? jj : 0, 0, public);
+        for (int i = 0; i < n; i++) {
+            status[i] = ss[i];
+            for (int k = 0; k < 3; k++)
+                q[i * 3 + k] = qq[i * 3 + k];
+            if (jac)
+                for (int k = 0; k < 9; k++)
+                    jac[i * 9 + k] = jj[i * 9 + k];
+        }
+        return;
+    }
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
-        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
-        solve_block(m, pose + lo * 3, par, mode, limits, q + lo * 3,
-                    status + lo, jac ? jac + lo * 9 : 0, stream, public);
+        long start[2] = {lo};
+        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};
+        /* a partial last block in whole lanes (bonered_fast.h) */
+        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;
+        for (int b = 0; b < blocks; b++) {
+            long s = start[b];
+            solve_block(size[b], pose + s * 3, par, mode, limits, q + s * 3,
+                        status + s, jac ? jac + s * 9 : 0, stream, public);
+        }
     }
     bf_stream_done(stream);
 }
@@ -444,8 +483,13 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
                 idx[a] = 0;
             }
         }
+        /* whole lanes (bonered_fast.h): the last block padded with its last sample */
+        int lanes = (m + BF_LANES - 1) / BF_LANES * BF_LANES;
+        for (int i = m; i < lanes; i++)
+            for (int k = 0; k < 3; k++)
+                pose[i * 3 + k] = pose[(m - 1) * 3 + k];
         for (int k = 0; k < nmodes; k++) {
-            solve_block(m, pose, par, modes[k], 1, q, st, 0, 0, 0);
+            solve_block(lanes, pose, par, modes[k], 1, q, st, 0, 0, 0);
             for (int i = 0; i < m; i++)
                 code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
         }

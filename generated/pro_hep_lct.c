@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b8629e3be2e7a5be3e688632e57463b2e958f8ac1979be688bed183c5388dad9
+ * Derivation hash: 7f88323bb5e2d6520942b77b9a86ed474536f7f602186be4dd4934a90e53d9dc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b8629e3be2e7a5be3e688632e57463b2e958f8ac1979be688bed183c5388dad9";
+const char bonered_derivation_hash[] = "7f88323bb5e2d6520942b77b9a86ed474536f7f602186be4dd4934a90e53d9dc";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -216,10 +216,11 @@ BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restri
             status_out[i] = (signed char)ST[i];
 }
 
-static void solve_block(int m, const double *restrict pose, const double *restrict par,
-                        int mode, int limits, double *restrict q_out,
-                        signed char *restrict status_out, double *restrict jac_out,
-                        int stream, int public)
+BF_NOIPA static void solve_block(int m, const double *restrict pose,
+                                 const double *restrict par, int mode, int limits,
+                                 double *restrict q_out,
+                                 signed char *restrict status_out,
+                                 double *restrict jac_out, int stream, int public)
 {
     double P[4][BF_BLOCK], S[4][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
@@ -278,9 +279,9 @@ static void solve_block(int m, const double *restrict pose, const double *restri
                jac_out, stream, public);
 }
 
-static void solve_all_block(int m, const double *restrict pose,
-                            const double *restrict par, int limits,
-                            double *restrict q_out, int public)
+BF_NOIPA static void solve_all_block(int m, const double *restrict pose,
+                                     const double *restrict par, int limits,
+                                     double *restrict q_out, int public)
 {
     double P[4][BF_BLOCK], S[4][BF_BLOCK];
     int ST[BF_BLOCK], FL[BF_BLOCK];
@@ -450,9 +451,24 @@ void bonered_solve_all(long n, const double *pose, const double *par_in, int lim
     double par[11];
     for (int k = 0; k < 11; k++)
         par[k] = par_in[k];
+    if (n > 0 && n < BF_LANES) {  /* padded to BF_LANES poses (bonered_fast.h) */
+        double pp[BF_LANES * 4], qq[BF_LANES * 32];
+        for (int i = 0; i < BF_LANES; i++)
+            for (int k = 0; k < 4; k++)
+                pp[i * 4 + k] = pose[(i < n ? i : n - 1) * 4 + k];
+        solve_all_block(BF_LANES, pp, par, limits, qq, public);
+        for (long k = 0; k < n * 32; k++)
+            q[k] = qq[k];
+        return;
+    }
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
-        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
-        solve_all_block(m, pose + lo * 4, par, limits, q + lo * 32, public);
+        long start[2] = {lo};
+        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};
+        /* a partial last block in whole lanes (bonered_fast.h) */
+        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;
+        for (int b = 0; b < blocks; b++)
+            solve_all_block(size[b], pose + start[b] * 4, par, limits,
+                            q + start[b] * 32, public);
     }
 }
 
@@ -467,10 +483,33 @@ void bonered_solve(long n, const double *pose, const double *par_in, int mode,
         par[k] = par_in[k];
     /* a Jacobian too large for the cache: streamed (bonered_fast.h) */
     int stream = jac && n * (long)sizeof(double) * 16 >= BF_STREAM_BYTES;
+    if (n > 0 && n < BF_LANES) {  /* padded to BF_LANES poses (bonered_fast.h) */
+        double pp[BF_LANES * 4], qq[BF_LANES * 4], jj[BF_LANES * 16];
+        signed char ss[BF_LANES];
+        for (int i = 0; i < BF_LANES; i++)
+            for (int k = 0; k < 4; k++)
+                pp[i * 4 + k] = pose[(i < n ? i : n - 1) * 4 + k];
+        solve_block(BF_LANES, pp, par, mode, limits, qq, ss, jac ? jj : 0, 0, public);
+        for (int i = 0; i < n; i++) {
+            status[i] = ss[i];
+            for (int k = 0; k < 4; k++)
+                q[i * 4 + k] = qq[i * 4 + k];
+            if (jac)
+                for (int k = 0; k < 16; k++)
+                    jac[i * 16 + k] = jj[i * 16 + k];
+        }
+        return;
+    }
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
-        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
-        solve_block(m, pose + lo * 4, par, mode, limits, q + lo * 4,
-                    status + lo, jac ? jac + lo * 16 : 0, stream, public);
+        long start[2] = {lo};
+        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};
+        /* a partial last block in whole lanes (bonered_fast.h) */
+        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;
+        for (int b = 0; b < blocks; b++) {
+            long s = start[b];
+            solve_block(size[b], pose + s * 4, par, mode, limits, q + s * 4,
+                        status + s, jac ? jac + s * 16 : 0, stream, public);
+        }
     }
     bf_stream_done(stream);
 }
@@ -512,8 +551,13 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
                 idx[a] = 0;
             }
         }
+        /* whole lanes (bonered_fast.h): the last block padded with its last sample */
+        int lanes = (m + BF_LANES - 1) / BF_LANES * BF_LANES;
+        for (int i = m; i < lanes; i++)
+            for (int k = 0; k < 4; k++)
+                pose[i * 4 + k] = pose[(m - 1) * 4 + k];
         for (int k = 0; k < nmodes; k++) {
-            solve_block(m, pose, par, modes[k], 1, q, st, 0, 0, 0);
+            solve_block(lanes, pose, par, modes[k], 1, q, st, 0, 0, 0);
             for (int i = 0; i < m; i++)
                 code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
         }

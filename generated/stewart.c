@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 01ed1b1f2a5247c56544f46b0cf98afc855aead5f8f591452e04be3cb86bdb7e
+ * Derivation hash: 5fbe08bc50ea3945b8a27741851cc35bc7650e7ededf31c7daabb7ba4d50f868
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "01ed1b1f2a5247c56544f46b0cf98afc855aead5f8f591452e04be3cb86bdb7e";
+const char bonered_derivation_hash[] = "5fbe08bc50ea3945b8a27741851cc35bc7650e7ededf31c7daabb7ba4d50f868";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -1020,10 +1020,11 @@ BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restri
             status_out[i] = (signed char)ST[i];
 }
 
-static void solve_block(int m, const double *restrict pose, const double *restrict par,
-                        int mode, int limits, double *restrict q_out,
-                        signed char *restrict status_out, double *restrict jac_out,
-                        int stream, int public)
+BF_NOIPA static void solve_block(int m, const double *restrict pose,
+                                 const double *restrict par, int mode, int limits,
+                                 double *restrict q_out,
+                                 signed char *restrict status_out,
+                                 double *restrict jac_out, int stream, int public)
 {
     double P[6][BF_BLOCK], S[7][BF_BLOCK];
     double F[3][BF_BLOCK];
@@ -1111,9 +1112,9 @@ static void solve_block(int m, const double *restrict pose, const double *restri
                jac_out, stream, public);
 }
 
-static void solve_all_block(int m, const double *restrict pose,
-                            const double *restrict par, int limits,
-                            double *restrict q_out, int public)
+BF_NOIPA static void solve_all_block(int m, const double *restrict pose,
+                                     const double *restrict par, int limits,
+                                     double *restrict q_out, int public)
 {
     double P[6][BF_BLOCK], S[7][BF_BLOCK];
     double F[3][BF_BLOCK];
@@ -1421,9 +1422,24 @@ void bonered_solve_all(long n, const double *pose, const double *par_in, int lim
     double par[4];
     for (int k = 0; k < 4; k++)
         par[k] = par_in[k];
+    if (n > 0 && n < BF_LANES) {  /* padded to BF_LANES poses (bonered_fast.h) */
+        double pp[BF_LANES * 6], qq[BF_LANES * 384];
+        for (int i = 0; i < BF_LANES; i++)
+            for (int k = 0; k < 6; k++)
+                pp[i * 6 + k] = pose[(i < n ? i : n - 1) * 6 + k];
+        solve_all_block(BF_LANES, pp, par, limits, qq, public);
+        for (long k = 0; k < n * 384; k++)
+            q[k] = qq[k];
+        return;
+    }
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
-        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
-        solve_all_block(m, pose + lo * 6, par, limits, q + lo * 384, public);
+        long start[2] = {lo};
+        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};
+        /* a partial last block in whole lanes (bonered_fast.h) */
+        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;
+        for (int b = 0; b < blocks; b++)
+            solve_all_block(size[b], pose + start[b] * 6, par, limits,
+                            q + start[b] * 384, public);
     }
 }
 
@@ -1438,10 +1454,33 @@ void bonered_solve(long n, const double *pose, const double *par_in, int mode,
         par[k] = par_in[k];
     /* a Jacobian too large for the cache: streamed (bonered_fast.h) */
     int stream = jac && n * (long)sizeof(double) * 36 >= BF_STREAM_BYTES;
+    if (n > 0 && n < BF_LANES) {  /* padded to BF_LANES poses (bonered_fast.h) */
+        double pp[BF_LANES * 6], qq[BF_LANES * 6], jj[BF_LANES * 36];
+        signed char ss[BF_LANES];
+        for (int i = 0; i < BF_LANES; i++)
+            for (int k = 0; k < 6; k++)
+                pp[i * 6 + k] = pose[(i < n ? i : n - 1) * 6 + k];
+        solve_block(BF_LANES, pp, par, mode, limits, qq, ss, jac ? jj : 0, 0, public);
+        for (int i = 0; i < n; i++) {
+            status[i] = ss[i];
+            for (int k = 0; k < 6; k++)
+                q[i * 6 + k] = qq[i * 6 + k];
+            if (jac)
+                for (int k = 0; k < 36; k++)
+                    jac[i * 36 + k] = jj[i * 36 + k];
+        }
+        return;
+    }
     for (long lo = 0; lo < n; lo += BF_BLOCK) {
-        int m = n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK;
-        solve_block(m, pose + lo * 6, par, mode, limits, q + lo * 6,
-                    status + lo, jac ? jac + lo * 36 : 0, stream, public);
+        long start[2] = {lo};
+        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};
+        /* a partial last block in whole lanes (bonered_fast.h) */
+        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;
+        for (int b = 0; b < blocks; b++) {
+            long s = start[b];
+            solve_block(size[b], pose + s * 6, par, mode, limits, q + s * 6,
+                        status + s, jac ? jac + s * 36 : 0, stream, public);
+        }
     }
     bf_stream_done(stream);
 }
@@ -1483,8 +1522,13 @@ long bonered_scan(long start, long stop, int naxes, const long *shape,
                 idx[a] = 0;
             }
         }
+        /* whole lanes (bonered_fast.h): the last block padded with its last sample */
+        int lanes = (m + BF_LANES - 1) / BF_LANES * BF_LANES;
+        for (int i = m; i < lanes; i++)
+            for (int k = 0; k < 6; k++)
+                pose[i * 6 + k] = pose[(m - 1) * 6 + k];
         for (int k = 0; k < nmodes; k++) {
-            solve_block(m, pose, par, modes[k], 1, q, st, 0, 0, 0);
+            solve_block(lanes, pose, par, modes[k], 1, q, st, 0, 0, 0);
             for (int i = 0; i < m; i++)
                 code[i] = (k > 0 && code[i] == 0) ? 0 : st[i];
         }

@@ -109,6 +109,32 @@ def test_compiled_ik_all_is_compiled_ik_mode_by_mode(name, monkeypatch):
     assert np.array_equal(single, m.ik_all(poses[:1], fast=True)[0], equal_nan=True)
 
 
+@pytest.mark.parametrize("name", NAMES)
+def test_a_poses_numbers_do_not_depend_on_its_batch(name):
+    """The fast path hands its stages whole vector lanes only (bonered_fast.h, BF_LANES:
+    a batch's partial last block overlaps the block before, a batch under 8 poses is
+    padded), so no pose goes through a loop's scalar remainder (scalar libm, a few ulp from
+    libmvec): a pose alone, in batches of 13 and of 203, at any place in them, gets the
+    same joints, Jacobian and status to the bit, and ik_all the same in batches of 5."""
+    m = _module(name)
+    poses = _poses(name, 203, seed=9)
+
+    def same(a, b):
+        return all(np.array_equal(x, y, equal_nan=True) for x, y in zip(a, b))
+
+    whole = m.ik_and_jacobian(poses, fast=True)
+    for k in range(0, 203, 7):
+        assert same([r[0] for r in m.ik_and_jacobian(poses[k:k + 1], fast=True)],
+                    [r[k] for r in whole]), k
+    thirteens = [m.ik_and_jacobian(poses[k:k + 13], fast=True) for k in range(0, 203, 13)]
+    assert same([np.concatenate(r) for r in zip(*thirteens)], whole)
+    every = m.ik_all(poses, limits=False, fast=True)
+    fives = np.concatenate([m.ik_all(poses[k:k + 5], limits=False, fast=True)
+                            for k in range(0, 203, 5)])
+    assert np.array_equal(fives, every, equal_nan=True)
+    assert np.isfinite(whole[0]).any() and (whole[2] != 0).any()
+
+
 def test_large_batches_split_over_threads_give_the_same_answer(monkeypatch):
     m = _module("planar_tripod")
     poses = _poses("planar_tripod", 3 * compiled.MIN_PER_THREAD + 7, seed=3)

@@ -25,6 +25,17 @@
 #define BF_BLOCK 64
 #endif
 
+/* every block the drivers hand to a stage is a multiple of BF_LANES poses (the widest
+ * vector of doubles, AVX-512's), so that each pose goes through the vectorized loop bodies
+ * and never through their scalar remainder (scalar libm, up to 4 ulp from libmvec): a
+ * pose's numbers do not depend on the batch it comes in.  A batch's last partial block is
+ * computed as whole lanes overlapping the poses before it (bf_tail_blocks: those computed
+ * again, to the same bits), a batch of fewer than BF_LANES poses padded with copies of its
+ * last pose, and a scan's last block with copies of its last sample */
+#ifndef BF_LANES
+#define BF_LANES 8
+#endif
+
 #if defined(__GNUC__)
 #define BF_INLINE static inline __attribute__((always_inline))
 #else
@@ -38,6 +49,38 @@
 #else
 #define BF_INTERNAL
 #endif
+
+/* the block functions of the drivers: compiled once, for any block size, and never
+ * specialized to a call's constant size (inlined or cloned for the padded BF_LANES of a
+ * small batch, gcc vectorized them otherwise: other libmvec widths, other last bits) */
+#if defined(__GNUC__) && !defined(__clang__)
+#define BF_NOIPA __attribute__((noipa))
+#elif defined(__GNUC__)
+#define BF_NOIPA __attribute__((noinline))
+#else
+#define BF_NOIPA
+#endif
+
+/* The blocks [start[b], start[b] + size[b]) that cover a batch's partial last block
+ * [lo, n), n >= BF_LANES, in whole lanes: the batch's last ceil(m / BF_LANES) lanes, or,
+ * where the batch is shorter than that (its only block), its first and its last
+ * floor(n / BF_LANES) lanes.  Returns their number (1 or 2). */
+BF_INLINE int bf_tail_blocks(long lo, long n, long *start, int *size)
+{
+    int m = (int)(n - lo);
+    int e = (m + BF_LANES - 1) / BF_LANES * BF_LANES;
+    if (e <= n) {
+        start[0] = n - e;
+        size[0] = e;
+        return 1;
+    }
+    int f = (int)(n / BF_LANES * BF_LANES);
+    start[0] = 0;
+    size[0] = f;
+    start[1] = n - f;
+    size[1] = f;
+    return 2;
+}
 
 /* status s replaced by code where cond (0 or 1), without a branch */
 #define BF_SET(s, cond, code) ((s) + (cond) * ((code) - (s)))
