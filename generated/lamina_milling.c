@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 05718a5843132ee0edf9f1902c405b77502a99040d546e640984cfcd7138e38a
+ * Derivation hash: 9c73db62eb33fd3825ad6894a3e36747ae902152810042f1e44242011909b415
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "05718a5843132ee0edf9f1902c405b77502a99040d546e640984cfcd7138e38a";
+const char bonered_derivation_hash[] = "9c73db62eb33fd3825ad6894a3e36747ae902152810042f1e44242011909b415";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 24c846de486a982f5b8f73c1779a809b3c87bf2a3ef4e44d6fe054e7e3f34e4e
+ * Derivation hash: 01068cd43aa0551668c9ad3d352697c82a9c2211082f45cfea7d21d944e9ac5b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "24c846de486a982f5b8f73c1779a809b3c87bf2a3ef4e44d6fe054e7e3f34e4e";
+const char bonered_derivation_hash[] = "01068cd43aa0551668c9ad3d352697c82a9c2211082f45cfea7d21d944e9ac5b";
 int bonered_abi(void) { return 3; }
 #endif
 

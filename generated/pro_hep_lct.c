@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7f88323bb5e2d6520942b77b9a86ed474536f7f602186be4dd4934a90e53d9dc
+ * Derivation hash: ffce58ad8d5c39ed01cc238159e619284ccb8dea34863b90df87c4120a62f223
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7f88323bb5e2d6520942b77b9a86ed474536f7f602186be4dd4934a90e53d9dc";
+const char bonered_derivation_hash[] = "ffce58ad8d5c39ed01cc238159e619284ccb8dea34863b90df87c4120a62f223";
 int bonered_abi(void) { return 3; }
 #endif
 

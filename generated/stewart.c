@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5fbe08bc50ea3945b8a27741851cc35bc7650e7ededf31c7daabb7ba4d50f868
+ * Derivation hash: 5a71870e24c1e1542f2c35316449010a01751a8ec181ffc96738c5fd20cd8d66
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5fbe08bc50ea3945b8a27741851cc35bc7650e7ededf31c7daabb7ba4d50f868";
+const char bonered_derivation_hash[] = "5a71870e24c1e1542f2c35316449010a01751a8ec181ffc96738c5fd20cd8d66";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a48d57a05030eccbb1842a21e48435e3d659af9b2467c4e7fb9c32a5f20a3a78
+ * Derivation hash: 1763734962b2f2ebffa0d7ea4b7a5047b83aa1cc07aa44a89f9997d1116738a2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a48d57a05030eccbb1842a21e48435e3d659af9b2467c4e7fb9c32a5f20a3a78";
+const char bonered_derivation_hash[] = "1763734962b2f2ebffa0d7ea4b7a5047b83aa1cc07aa44a89f9997d1116738a2";
 int bonered_abi(void) { return 3; }
 #endif
 

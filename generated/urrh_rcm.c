@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3661fdb5b784cecebf86c6a97bc1cab92070a1b2c1a88ef9b42c9623f4266df6
+ * Derivation hash: 684207e6000bbe915940b8fff3e8d918c8996ebc42fa6530e6e33255f25520af
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3661fdb5b784cecebf86c6a97bc1cab92070a1b2c1a88ef9b42c9623f4266df6";
+const char bonered_derivation_hash[] = "684207e6000bbe915940b8fff3e8d918c8996ebc42fa6530e6e33255f25520af";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -200,3 +200,31 @@ def test_step_uses_are_the_roots_each_kernel_reads(name):
             other = list(roots[:k])
             other[j] = other[j] + 1.0
             assert not np.array_equal(coefficients(kern, other), base), (k, j)
+
+
+@pytest.mark.parametrize("signs", ["positive", "negative", "mixed", "zero"])
+def test_quadratic_roots_whatever_the_signs_of_b(signs):
+    """The lean quadratic root divides only the branch that applies where B has one sign
+    throughout the batch: the same numbers, bit for bit, as the rule written out per
+    element (s = |B| + sqrt(disc); the +sqrt root s / 2A where B <= 0, -2C / s where
+    B > 0; the -sqrt root s / -2A where B >= 0, 2C / s where B < 0), every mode, with B of
+    one sign, of both, zero, and with NaN."""
+    from bonered_alg.runtime.backsubstitution import _step_root
+
+    rng = np.random.default_rng(21)
+    n = 500
+    a = rng.uniform(0.5, 2.0, n) * rng.choice([-1.0, 1.0], n)
+    b = {"positive": rng.uniform(0.1, 3.0, n), "negative": -rng.uniform(0.1, 3.0, n),
+         "mixed": rng.uniform(-3.0, 3.0, n), "zero": np.zeros(n)}[signs]
+    c = -a * rng.uniform(0.0, 2.0, n)  # a c <= 0: real roots
+    if signs == "mixed":
+        b[7] = np.nan
+    with np.errstate(all="ignore"):
+        s = np.abs(b) + np.sqrt(b * b - 4.0 * a * c)
+        expected = {0: np.where(b > 0.0, -2.0 * c / s, s / (2.0 * a)),
+                    1: np.where(b < 0.0, 2.0 * c / s, s / (-2.0 * a))}
+        for minus in (0, 1):
+            dest = np.empty(n)
+            _step_root(2, a, b, c, minus, dest)
+            assert np.array_equal(dest, expected[minus], equal_nan=True), minus
+    assert np.isfinite(expected[0]).sum() >= n - 1

@@ -122,12 +122,15 @@ def _step_root(degree, a, b, c, minus, dest):
     # other branch's value divided into ``dest`` where it applies (no temporary array)
     s = numpy.abs(b)
     s += sq
-    if minus:
-        numpy.divide(s, -2.0 * a, out=dest)
-        numpy.divide(2.0 * c, s, out=dest, where=b < 0.0)
+    # where one branch applies to every pose (B of one sign throughout a chunk, as in a
+    # workspace), only that branch is divided: the same numbers, one or two passes fewer
+    other = (b < 0.0) if minus else (b > 0.0)
+    if numpy.ndim(other) and other.all():
+        numpy.divide(2.0 * c if minus else -2.0 * c, s, out=dest)
     else:
-        numpy.divide(s, 2.0 * a, out=dest)
-        numpy.divide(-2.0 * c, s, out=dest, where=b > 0.0)
+        numpy.divide(s, -2.0 * a if minus else 2.0 * a, out=dest)
+        if numpy.ndim(other) == 0 or other.any():
+            numpy.divide(2.0 * c if minus else -2.0 * c, s, out=dest, where=other)
     return ("quadratic", disc, bb)
 
 
