@@ -613,7 +613,9 @@ def hand_written_benchmarks(n=1_000_000):
     of the same closed forms (bench/hand_written.py), IK and IK + Jacobian, on the same
     poses: the numpy runtime (``fast=False``) and the compiled fast path (``fast=True``, all
     cores); ratio = hand-written time / generated time (>= 1: the generated code is as
-    fast).  IK + Jacobian is ``ik_and_jacobian`` (one solve for both)."""
+    fast).  IK + Jacobian is ``ik_and_jacobian`` (one solve for both).  Where the module has
+    forward kinematics, ``fk`` of every assembly mode on the joints of a fiftieth of the
+    poses (mode 0, limits off)."""
     import hand_written as hw
     from bonered_alg.generated import urrh_rcm as ur
 
@@ -658,6 +660,12 @@ def hand_written_benchmarks(n=1_000_000):
                  lambda m=m, p=sub, k=par, f=fast: m.ik_all(p, limits=False, fast=f, **k)], 3)
             row.update({f"{label}_ik_all_poses_per_s": len(sub) / t_all,
                         f"{label}_ik_all_speedup_vs_ik_mode_by_mode": t_modes / t_all})
+        if m.FK_MODES:  # forward kinematics, every assembly mode, in numpy (the only path)
+            qf = m.ik(poses[: n // 50], limits=False, fast=False, **par)
+            qf = qf[np.all(np.isfinite(qf), axis=-1)]
+            t_fk = median_time(lambda m=m, q=qf, k=par: m.fk(q, **k), 3)
+            row.update({"fk_modes": m.FK_MODES, "fk_all_modes_configurations": len(qf),
+                        "generated_fk_all_modes_configurations_per_s": len(qf) / t_fk})
         if name == "urrh_rcm":  # forward kinematics, every assembly mode
             q = ur.ik(poses, limits=False)[: n // 10]
             t_hand_fk = median_time(lambda q=q: hw.urrh_rcm_fk(q, ur.PARAMETERS), 3)
