@@ -1,7 +1,8 @@
 """Every vectorized function of the generated modules evaluates its poses in chunks (memory
 bounded at any batch size): with chunks of 7 the values are those of one piece, to the bit,
-for each of the six mechanisms (the numpy runtime: the compiled one's last bits can change
-with the size of the batch), and the chunks are the size asked for."""
+for each of the six mechanisms (the numpy runtime, the reference; the fast path's own batch
+independence is test_fast_path.test_a_poses_numbers_do_not_depend_on_its_batch), and the
+chunks are the size asked for."""
 
 import importlib
 

@@ -137,8 +137,8 @@ def test_efforts_in_chunks_are_the_efforts_in_one_piece(method, monkeypatch):
     from bonered_alg.runtime import model as runtime_model
     from bonered_alg.runtime import statics
 
-    # numpy's IK and Jacobian: the compiled ones agree with numpy to rounding, and their last
-    # bits can change with the size of the batch (its vector loops and their remainder)
+    # numpy's IK and Jacobian, the reference (the fast path's own batch independence:
+    # test_fast_path.test_a_poses_numbers_do_not_depend_on_its_batch)
     monkeypatch.setenv("BONERED_ALG_FAST", "0")
     h, F = _sample(60, 7)
     h[5] = [0.0, 500.0, 50.0]  # out of reach
