@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 01068cd43aa0551668c9ad3d352697c82a9c2211082f45cfea7d21d944e9ac5b
+ * Derivation hash: a3d9124230371e146d464f4c22e092de09c3aa52a0b3e350837f2fdf7635eaa1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "01068cd43aa0551668c9ad3d352697c82a9c2211082f45cfea7d21d944e9ac5b";
+const char bonered_derivation_hash[] = "a3d9124230371e146d464f4c22e092de09c3aa52a0b3e350837f2fdf7635eaa1";
 int bonered_abi(void) { return 3; }
 #endif
 

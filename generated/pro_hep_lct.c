@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ffce58ad8d5c39ed01cc238159e619284ccb8dea34863b90df87c4120a62f223
+ * Derivation hash: 20662f928bc9d673f695f16fe2d48216c17bf2a9277e58812bd37bdbae53ad5d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ffce58ad8d5c39ed01cc238159e619284ccb8dea34863b90df87c4120a62f223";
+const char bonered_derivation_hash[] = "20662f928bc9d673f695f16fe2d48216c17bf2a9277e58812bd37bdbae53ad5d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5a71870e24c1e1542f2c35316449010a01751a8ec181ffc96738c5fd20cd8d66
+ * Derivation hash: 803eeead0f93a91b90f4f82c788a81ed1e760333c1f3f5a270e8a4117f840a77
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5a71870e24c1e1542f2c35316449010a01751a8ec181ffc96738c5fd20cd8d66";
+const char bonered_derivation_hash[] = "803eeead0f93a91b90f4f82c788a81ed1e760333c1f3f5a270e8a4117f840a77";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1763734962b2f2ebffa0d7ea4b7a5047b83aa1cc07aa44a89f9997d1116738a2
+ * Derivation hash: af36b4ab9f380ae7d236aa5a3222805fdab8d7844653ce8c45c2413e3c522b7d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1763734962b2f2ebffa0d7ea4b7a5047b83aa1cc07aa44a89f9997d1116738a2";
+const char bonered_derivation_hash[] = "af36b4ab9f380ae7d236aa5a3222805fdab8d7844653ce8c45c2413e3c522b7d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 684207e6000bbe915940b8fff3e8d918c8996ebc42fa6530e6e33255f25520af
+ * Derivation hash: 3908c46e9d21d8e9ab603a6e5bd9d806b6d12cdfc77f69e1955b8cea62f74470
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "684207e6000bbe915940b8fff3e8d918c8996ebc42fa6530e6e33255f25520af";
+const char bonered_derivation_hash[] = "3908c46e9d21d8e9ab603a6e5bd9d806b6d12cdfc77f69e1955b8cea62f74470";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -326,9 +326,7 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         f"        double pp[BF_LANES * {npose}], qq[BF_LANES * {nj}], "
         f"jj[BF_LANES * {nj_entries}];",
         "        signed char ss[BF_LANES];",
-        "        for (int i = 0; i < BF_LANES; i++)",
-        f"            for (int k = 0; k < {npose}; k++)",
-        f"                pp[i * {npose} + k] = pose[(i < n ? i : n - 1) * {npose} + k];",
+        *_padded_poses(npose),
         "        solve_block(BF_LANES, pp, par, mode, limits, qq, ss, jac ? jj : 0, 0, public);",
         "        for (int i = 0; i < n; i++) {",
         "            status[i] = ss[i];",
@@ -340,11 +338,7 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         "        }",
         "        return;",
         "    }",
-        "    for (long lo = 0; lo < n; lo += BF_BLOCK) {",
-        "        long start[2] = {lo};",
-        "        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};",
-        "        /* a partial last block in whole lanes (bonered_fast.h) */",
-        "        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;",
+        *_lane_blocks(),
         "        for (int b = 0; b < blocks; b++) {",
         "            long s = start[b];",
         f"            solve_block(size[b], pose + s * {npose}, par, mode, limits, q + s * {nj},",
@@ -509,19 +503,13 @@ def _solve_all(steps: Sequence[tuple[int, Kernel, int | None]], prelude: list[st
         "        par[k] = par_in[k];",
         "    if (n > 0 && n < BF_LANES) {  /* padded to BF_LANES poses (bonered_fast.h) */",
         f"        double pp[BF_LANES * {npose}], qq[BF_LANES * {modes * nj}];",
-        "        for (int i = 0; i < BF_LANES; i++)",
-        f"            for (int k = 0; k < {npose}; k++)",
-        f"                pp[i * {npose} + k] = pose[(i < n ? i : n - 1) * {npose} + k];",
+        *_padded_poses(npose),
         "        solve_all_block(BF_LANES, pp, par, limits, qq, public);",
         f"        for (long k = 0; k < n * {modes * nj}; k++)",
         "            q[k] = qq[k];",
         "        return;",
         "    }",
-        "    for (long lo = 0; lo < n; lo += BF_BLOCK) {",
-        "        long start[2] = {lo};",
-        "        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};",
-        "        /* a partial last block in whole lanes (bonered_fast.h) */",
-        "        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;",
+        *_lane_blocks(),
         "        for (int b = 0; b < blocks; b++)",
         f"            solve_all_block(size[b], pose + start[b] * {npose}, par, limits,",
         f"                            q + start[b] * {modes * nj}, public);",
@@ -529,6 +517,24 @@ def _solve_all(steps: Sequence[tuple[int, Kernel, int | None]], prelude: list[st
         "}",
         "",
     ]
+
+
+def _padded_poses(npose: int) -> list[str]:
+    """A driver's copy of a batch of fewer than BF_LANES poses into ``pp``, padded with its
+    last pose (bonered_fast.h)."""
+    return ["        for (int i = 0; i < BF_LANES; i++)",
+            f"            for (int k = 0; k < {npose}; k++)",
+            f"                pp[i * {npose} + k] = pose[(i < n ? i : n - 1) * {npose} + k];"]
+
+
+def _lane_blocks() -> list[str]:
+    """A driver's loop over its blocks, opened: ``blocks`` blocks ``[start[b], start[b] +
+    size[b])`` of each BF_BLOCK, a partial last one in whole lanes (bf_tail_blocks)."""
+    return ["    for (long lo = 0; lo < n; lo += BF_BLOCK) {",
+            "        long start[2] = {lo};",
+            "        int size[2] = {n - lo < BF_BLOCK ? (int)(n - lo) : BF_BLOCK};",
+            "        /* a partial last block in whole lanes (bonered_fast.h) */",
+            "        int blocks = size[0] % BF_LANES ? bf_tail_blocks(lo, n, start, size) : 1;"]
 
 
 def _part_begin(part: int) -> list[str]:

@@ -699,12 +699,11 @@ class Model:
         mode = check.mode(self, func, mode)
         par = check.parameters(self, func, params or {})
         shape = numpy.broadcast_shapes(pose.shape[:-1], load.shape[:-1])
-        both = numpy.concatenate([numpy.broadcast_to(pose, shape + pose.shape[-1:]),
-                                  numpy.broadcast_to(load, shape + (3,))], axis=-1)
-        k = len(self.pose)
-        return _chunked(both, par, lambda pl, pr: (self._efforts(pl[:, :k], pl[:, k:], mode,
-                                                                 method, pr, func),),
-                        FREE_BODY_CHUNK if method == "free_body" else STATICS_CHUNK)[0]
+        rows = (numpy.broadcast_to(pose, shape + pose.shape[-1:]),
+                numpy.broadcast_to(load, shape + (3,)))
+        return _rows_in_chunks(rows, par, lambda p, f, pr: (
+            self._efforts(p, f, mode, method, pr, func),),
+            FREE_BODY_CHUNK if method == "free_body" else STATICS_CHUNK)[0]
 
     def _efforts(self, pose, load, mode, method, par, func):
         """:meth:`static_efforts` of one chunk of poses and loads."""
