@@ -681,6 +681,95 @@ def hand_written_benchmarks(n=1_000_000):
     return out
 
 
+def lambdified_mechanism(name, m, par):
+    """``(ik, ik_and_jacobian, build_s)`` of plain ``sympy.lambdify`` and of
+    ``lambdify(cse=True)`` (keys "plain", "cse"): the mode-0 IK of the derivation's steps
+    (``Derivation.ik_expressions``, each later step's root with the earlier ones inserted,
+    angle joints as 2 atan(t)) in the module's joint order, with the module's parameters
+    (``par`` over its defaults), and d(IK)/d(pose) by sympy; the baseline a user of sympy
+    would write.  ``ik(p)`` -> (n, joints), ``ik_and_jacobian(p)`` -> (q, (n, joints,
+    pose))."""
+    d = derive(name).derivation
+    mech = d.mechanism
+    roots: dict = {}
+    for q, e in d.ik_expressions().items():
+        roots[q] = e.xreplace(roots)
+    values = {**m.PARAMETERS, **par}
+    geo = {p: values[str(p)] for p in mech.geometric}
+    pose = list(mech.pose.coordinates)
+    by_name = {mech.public_joint(q): 2 * sp.atan(e) if q in mech.angle_joints else e
+               for q, e in roots.items()}
+    exprs = [by_name[j].xreplace(geo) for j in m.JOINTS]
+    extra = set().union(*(e.free_symbols for e in exprs)) - set(pose)
+    if extra:
+        raise ValueError(f"{name}: the IK expressions still contain {sorted(map(str, extra))}")
+    jac = list(sp.Matrix(exprs).jacobian(sp.Matrix(pose)))
+    nq, nx = len(exprs), len(pose)
+    out = {}
+    for label, cse in (("plain", False), ("cse", True)):
+        t0 = time.perf_counter()
+        lam_ik = sp.lambdify(pose, exprs, modules="numpy", cse=cse)
+        lam_j = sp.lambdify(pose, [*exprs, *jac], modules="numpy", cse=cse)
+        build = time.perf_counter() - t0
+
+        def ik(p, f=lam_ik):
+            return np.stack(np.broadcast_arrays(*f(*p.T)), axis=-1)
+
+        def ik_j(p, f=lam_j):
+            r = np.broadcast_arrays(*f(*p.T))
+            return (np.stack(r[:nq], axis=-1),
+                    np.stack(r[nq:], axis=-1).reshape(len(p), nq, nx))
+
+        out[label] = (ik, ik_j, build)
+    return out
+
+
+def batch_size_benchmarks(sizes=(1_000, 10_000, 100_000), plain_at=10_000):
+    """IK and IK + Jacobian per batch size (limits off), interleaved medians: the
+    hand-written numpy (bench/hand_written.py), ``sympy.lambdify(cse=True)`` of the
+    derivation's IK (plain ``lambdify`` too at ``plain_at`` poses only: it is 10-1000x
+    slower), the numpy runtime and the compiled fast path.  Ratios are hand-written time /
+    time (>= 1: as fast as the hand form).  hand_written_benchmarks gives 10^6 poses; at
+    these sizes the hand form's temporaries stay in cache too."""
+    lam: dict = {}
+    out: dict = {"sizes": list(sizes)}
+    for n in sizes:
+        cases, _ = _hand_written_cases(n, np.random.default_rng(16))
+        for name, (m, poses, par, hand) in cases.items():
+            if name not in lam:
+                lam[name] = lambdified_mechanism(name, m, par)
+                out.setdefault(name, {})["lambdify_build_s"] = {
+                    k: v[2] for k, v in lam[name].items()}
+            labels = ["hand_written", "lambdify_cse", "numpy", "compiled"]
+            with_plain = n == plain_at
+            if with_plain:
+                labels.append("lambdify")
+            row = {"poses": len(poses)}
+            for what, jac in (("ik", False), ("ik_plus_jacobian", True)):
+                gen = m.ik_and_jacobian if jac else m.ik
+                k = 0 if not jac else 1
+                fns = [lambda h=hand, j=jac: h(j),
+                       lambda f=lam[name]["cse"][k], p=poses: f(p),
+                       *[lambda g=gen, p=poses, a=par, f=fast: g(p, limits=False, fast=f, **a)
+                         for fast in (False, True)]]
+                if with_plain:
+                    fns.append(lambda f=lam[name]["plain"][k], p=poses: f(p))
+                for fn in fns:
+                    fn()  # built and warm
+                # about 0.2 s a round for the fastest; plain lambdify once or twice
+                t = interleaved_medians(fns, 3 if with_plain and jac else 5)
+                for label, tk in zip(labels, t):
+                    row[f"{label}_{what}_poses_per_s"] = len(poses) / tk
+                    row[f"{label}_{what}_ratio_vs_hand_written"] = t[0] / tk
+                ref = gen(poses, limits=False, fast=False, **par)
+                got = fns[1]()
+                row[f"lambdify_cse_{what}_max_rel_difference_vs_numpy"] = (
+                    _max_rel(got[1], ref[1]) if jac else _max_rel(got, ref))
+            out[name][str(n)] = row
+            print(name, n, row, flush=True)
+    return out
+
+
 def one_pose_benchmarks(calls=2000):
     """The cost of one call on one pose (a control loop's use): microseconds per call of the
     hand-written numpy, the numpy runtime and the compiled fast path, IK and IK + Jacobian,
@@ -923,7 +1012,7 @@ def main():
     ap.add_argument("--sympy-budget", type=float, default=60.0)
     ap.add_argument("--only", choices=["workspace", "pro_hep_lct_tool", "hand_written",
                                        "one_pose", "membership", "derive",
-                                       "fast_path_build"],
+                                       "fast_path_build", "batch_sizes"],
                     default=None,
                     help="re-run one section and merge it into the existing --out file")
     args = ap.parse_args()
@@ -935,7 +1024,8 @@ def main():
                               "one_pose": one_pose_benchmarks,
                               "membership": membership_benchmarks,
                               "derive": derive_benchmarks,
-                              "fast_path_build": fast_path_build_benchmarks}[args.only]()
+                              "fast_path_build": fast_path_build_benchmarks,
+                              "batch_sizes": batch_size_benchmarks}[args.only]()
         args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
         print(f"wrote {args.out} ({args.only} section)")
         return
@@ -953,6 +1043,7 @@ def main():
         "tripod_planar": tripod_planar_benchmarks(args.poses),
         "workspace": workspace_benchmarks(),
         "hand_written": hand_written_benchmarks(),
+        "batch_sizes": batch_size_benchmarks(),
         "one_pose": one_pose_benchmarks(),
         "membership": membership_benchmarks(),
         "fast_path_build": fast_path_build_benchmarks(),
