@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a3d9124230371e146d464f4c22e092de09c3aa52a0b3e350837f2fdf7635eaa1
+ * Derivation hash: 94a723f1af097d32c43779f20dc9c47e8a66ad31d130a37089c053cdf986179f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a3d9124230371e146d464f4c22e092de09c3aa52a0b3e350837f2fdf7635eaa1";
+const char bonered_derivation_hash[] = "94a723f1af097d32c43779f20dc9c47e8a66ad31d130a37089c053cdf986179f";
 int bonered_abi(void) { return 3; }
 #endif
 

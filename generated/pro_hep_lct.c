@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 20662f928bc9d673f695f16fe2d48216c17bf2a9277e58812bd37bdbae53ad5d
+ * Derivation hash: faf9e8c4b5f572157888a164333fe43157ee0bae95232a68b190b392da5b11cc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "20662f928bc9d673f695f16fe2d48216c17bf2a9277e58812bd37bdbae53ad5d";
+const char bonered_derivation_hash[] = "faf9e8c4b5f572157888a164333fe43157ee0bae95232a68b190b392da5b11cc";
 int bonered_abi(void) { return 3; }
 #endif
 

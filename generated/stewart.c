@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 803eeead0f93a91b90f4f82c788a81ed1e760333c1f3f5a270e8a4117f840a77
+ * Derivation hash: b94c608281679a90275c6b1a5f0773aa853dbed74b139d15defc2af0f2a05ab3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "803eeead0f93a91b90f4f82c788a81ed1e760333c1f3f5a270e8a4117f840a77";
+const char bonered_derivation_hash[] = "b94c608281679a90275c6b1a5f0773aa853dbed74b139d15defc2af0f2a05ab3";
 int bonered_abi(void) { return 3; }
 #endif
 

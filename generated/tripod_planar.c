@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: af36b4ab9f380ae7d236aa5a3222805fdab8d7844653ce8c45c2413e3c522b7d
+ * Derivation hash: 4a00b2711ec8344513f82733990439db9f65aa3672cda4c5cdfdb93399ee4998
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "af36b4ab9f380ae7d236aa5a3222805fdab8d7844653ce8c45c2413e3c522b7d";
+const char bonered_derivation_hash[] = "4a00b2711ec8344513f82733990439db9f65aa3672cda4c5cdfdb93399ee4998";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3908c46e9d21d8e9ab603a6e5bd9d806b6d12cdfc77f69e1955b8cea62f74470
+ * Derivation hash: 082c2bd6f72bd12e2d4c8cf16923caefdcf5bdb291c3f701fe0fca56e14477a9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3908c46e9d21d8e9ab603a6e5bd9d806b6d12cdfc77f69e1955b8cea62f74470";
+const char bonered_derivation_hash[] = "082c2bd6f72bd12e2d4c8cf16923caefdcf5bdb291c3f701fe0fca56e14477a9";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -262,12 +262,14 @@ def _rps_with_constants(rps: RPSSystem, c: dict) -> RPSSystem:
 
 def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
                   par: Sequence[sp.Symbol], sub: dict, c: bool = False,
-                  compact: dict | None = None, uses: list | None = None
+                  compact: dict | None = None, uses: list | None = None,
+                  coefficients: list | None = None
                   ) -> tuple[list[Kernel], list[str], list]:
     """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows.
     A step in ``compact`` (a distance leg's geometric form) is evaluated in that form.
     ``uses`` (a list) receives, per step, the indices of the earlier steps whose unknowns
-    its coefficients contain (a kernel takes every earlier unknown as an argument)."""
+    its coefficients contain (a kernel takes every earlier unknown as an argument);
+    ``coefficients`` (a list) each step's ``[A, B, C]`` as its kernel evaluates them."""
     kernels, rows, mode_bits = [], [], []
     solved: list[sp.Symbol] = []
     bit = 0
@@ -279,6 +281,8 @@ def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symb
         if uses is not None:
             free = set().union(*(sp.sympify(e).free_symbols for e in coeffs))
             uses.append(tuple(j for j, q in enumerate(solved) if q in free))
+        if coefficients is not None:
+            coefficients.append(coeffs)
         kern = kernel(f"_{prefix}{k}_{st.joint}", [*inputs, *solved, *par], coeffs,
                       f"Coefficients (A, B, C) of the generator solved for {st.joint} "
                       f"(from {st.source}).", c=c, scalars=par)
@@ -317,10 +321,23 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
                       "Study coordinates STUDY_POSE of the pose (POSE).", c=True,
                       scalars=par)]
     step_uses: list = []
+    step_coeffs: list = []
     step_kernels, steps_src, mode_bits = _step_kernels("step", spec.steps, study, par, {},
                                                        c=True, compact=spec.compact,
-                                                       uses=step_uses)
+                                                       uses=step_uses,
+                                                       coefficients=step_coeffs)
     kernels += step_kernels
+    # where no step reads an earlier root, every step's coefficients from one CSE program:
+    # what the steps share (the rotation of a Stewart platform's six legs, x^2 + y^2 of
+    # lamina_milling's two bottom chains) computed once; the numpy runtime takes it in
+    # place of the step kernels (the C module inlines those, and its compiler shares)
+    fused = None
+    if len(spec.steps) > 1 and not any(step_uses):
+        fused = kernel("_step_coefficients", [*study, *par],
+                       [e for coeffs in step_coeffs for e in coeffs],
+                       "Coefficients (A, B, C) of every IK step in order, of the Study "
+                       "coordinates alone (no step reads an earlier root).", scalars=par)
+        kernels.append(fused)
     bit = len(mode_bits)
     fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
     kernels += fk_kernels
@@ -487,6 +504,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         "singularity_meanings": [(n, m) for n, _, m in spec.singularities],
         "kernels": kernels, "steps": _step_rows(steps_src), "fk_steps": _step_rows(fk_src),
         "step_uses": tuple(step_uses),
+        "step_coefficients_kernel": fused.name if fused else "None",
         "singularity_kernels": sing_kernels, "singularity_matrices": sing_matrices,
         "pivot_steps": tuple(linear),
         "home": None if spec.home is None else tuple(float(v) for v in spec.home),
@@ -516,7 +534,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
 
     def ops(name: str) -> int:  # of the numpy kernel the runtime calls
         return numpy_ops[pose_kernels.get(name, name)]
-    ik_ops = (sum(ops(n) for n in ["_study", *[k.name for k in step_kernels]]
+    step_names = [fused.name] if fused else [k.name for k in step_kernels]
+    ik_ops = (sum(ops(n) for n in ["_study", *step_names]
                   + [n for n in ("_pivots", "_limit_values") if n in by_name])
               + numpy_ops.get("_shared", 0))
     context["function_operations"] = [("ik", ik_ops), ("ik_and_jacobian", ik_ops + ops("_jac"))]

@@ -3,6 +3,9 @@
 A step is ``(degree, kernel, bit)``: the kernel returns the coefficients ``(A, B, C)`` of
 ``A x^2 + B x + C`` (``A`` unused for degree 1) from the inputs and the unknowns solved
 before it; ``bit`` is the bit of the mode that selects the ``-sqrt`` root of a quadratic.
+Where no step reads an earlier unknown, ``coefficients`` may give every step's ``(A, B,
+C)`` from the inputs in one call (a generated module's ``_step_coefficients``: one CSE
+program over all the steps), used in place of the step kernels.
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ from .status import (
 
 
 def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False,
-                   per_step=None):
+                   per_step=None, coefficients=None):
     """Solve ``steps`` in order (linear or quadratic in one unknown each); NaN on failure.
 
     The per-step record (``per_step``) comes from :func:`backsubstitute_detailed`; without
@@ -31,11 +34,22 @@ def backsubstitute(inputs, steps, indices, n_out, mode, par, with_status=False,
     array operations."""
     if per_step is not None:
         return backsubstitute_detailed(inputs, steps, indices, n_out, mode, par, with_status,
-                                       per_step)
-    return backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status)
+                                       per_step, coefficients)
+    return backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status,
+                               coefficients)
 
 
-def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=False):
+def _all_coefficients(cols, par, coefficients):
+    """Each step's ``(A, B, C)`` from the one kernel ``coefficients`` (a list, one triple
+    per step), or None without it."""
+    if coefficients is None:
+        return None
+    values = coefficients(*cols, *par)
+    return [values[i:i + 3] for i in range(0, len(values), 3)]
+
+
+def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=False,
+                        coefficients=None):
     """:func:`backsubstitute_detailed` without the per-step record, in fewer operations.
 
     The status is the code of the first step that fails (earlier steps are then all valid,
@@ -51,7 +65,8 @@ def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=Fa
     out = numpy.empty((n_out,) + shape)
     records = [] if with_status else None
     with numpy.errstate(all="ignore"):
-        failed = _roots(cols, steps, indices, out, mode, par, records)
+        failed = _roots(cols, steps, indices, out, mode, par, records,
+                        _all_coefficients(cols, par, coefficients))
         if failed is None:
             failed = numpy.zeros(shape, dtype=bool)
         status = None
@@ -63,16 +78,20 @@ def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=Fa
     return numpy.moveaxis(out, 0, -1), status
 
 
-def _roots(cols, steps, indices, out, mode, par, records=None):
+def _roots(cols, steps, indices, out, mode, par, records=None, fused=None):
     """Each step's root written into its row of ``out`` (n_out, ...) in place; returns
     where some root is not finite (None where every root is).  A step that fails gives NaN
     or infinity (no real root: the discriminant set to NaN below its tolerance), and the
     later steps take that on; the roots of valid configurations are the general rule's,
     operation for operation.  ``records`` (a list) receives what the status needs of each
-    step."""
+    step; ``fused``, each step's coefficients where already computed
+    (:func:`_all_coefficients`), released as each step is solved."""
     solved = []
-    for (degree, kern, bit), index in zip(steps, indices):
-        a, b, c = kern(*cols, *solved, *par)
+    for k, ((degree, kern, bit), index) in enumerate(zip(steps, indices)):
+        if fused is None:
+            a, b, c = kern(*cols, *solved, *par)
+        else:
+            (a, b, c), fused[k] = fused[k], None
         dest = out[index, ...]
         record = _step_root(degree, a, b, c, degree == 2 and (mode >> bit) & 1, dest)
         solved.append(dest)
@@ -150,7 +169,8 @@ def step_mode_bits(steps, uses=None):
     return coeff_bits, root_bits
 
 
-def backsubstitute_modes(inputs, steps, indices, n_out, modes, par, uses=None):
+def backsubstitute_modes(inputs, steps, indices, n_out, modes, par, uses=None,
+                         coefficients=None):
     """``backsubstitute_lean(inputs, ..., mode, par)[0]`` of every mode in ``modes``, the
     same numbers, with each step's coefficients evaluated once per choice of the roots its
     kernel reads and both roots of a quadratic from one set of coefficients.  ``uses``: per
@@ -163,7 +183,8 @@ def backsubstitute_modes(inputs, steps, indices, n_out, modes, par, uses=None):
 
     The numbers are the lean form's: a step's coefficients do not depend on the roots it
     does not read, and a mode's joints are NaN wherever one of its roots is not finite,
-    which is the lean form's rule (its NaN roots also reach later kernels as inputs)."""
+    which is the lean form's rule (its NaN roots also reach later kernels as inputs).
+    ``coefficients``: as for :func:`backsubstitute` (no step then reads an earlier root)."""
     shape = inputs.shape[:-1]
     cols = contiguous_columns(inputs)
     coeff_bits, root_bits = step_mode_bits(steps, uses)
@@ -178,13 +199,17 @@ def backsubstitute_modes(inputs, steps, indices, n_out, modes, par, uses=None):
     # per step: {root key: (root, finite)}
     roots: list[dict] = []
     with numpy.errstate(all="ignore"):
+        fused = _all_coefficients(cols, par, coefficients)
         for k, (degree, kern, bit) in enumerate(steps):
             found: dict = {}
             for partial in assignments(coeff_bits[k]):
-                # each earlier root at the bits this assignment sets (0 for the others: a
-                # root the kernel does not read may be any of its values)
-                args = [roots[j][key(partial, root_bits[j])][0] for j in range(k)]
-                a, b, c = kern(*cols, *args, *par)
+                if fused is not None:  # no step reads an earlier root: one assignment
+                    a, b, c = fused[k]
+                else:
+                    # each earlier root at the bits this assignment sets (0 for the
+                    # others: a root the kernel does not read may be any of its values)
+                    args = [roots[j][key(partial, root_bits[j])][0] for j in range(k)]
+                    a, b, c = kern(*cols, *args, *par)
                 for minus in ((0, 1) if degree == 2 else (0,)):
                     dest = numpy.empty(shape)
                     _step_root(degree, a, b, c, minus, dest)
@@ -248,7 +273,7 @@ def _lean_status(inputs, shape, failed, roots, records):
 
 
 def backsubstitute_detailed(inputs, steps, indices, n_out, mode, par, with_status=False,
-                            per_step=None):
+                            per_step=None, coefficients=None):
     """Solve ``steps`` in order (linear or quadratic in one unknown each); NaN on failure.
 
     ``inputs`` has shape (..., n_in); the result has shape (..., n_out) with unknown k at
@@ -260,6 +285,7 @@ def backsubstitute_detailed(inputs, steps, indices, n_out, mode, par, with_statu
     (NOT_SOLVED where its coefficients use an unknown an earlier step failed to give: a
     polynomial of finite numbers is never NaN), ``discriminants`` (one array per step,
     None for a linear step) and ``roots`` (each step's root before the all-or-nothing rule).
+    ``coefficients``: as for :func:`backsubstitute`.
     """
     shape = inputs.shape[:-1]
     # contiguous columns (numpy's loops on strided arrays are about 1.7 times slower); a
@@ -273,8 +299,12 @@ def backsubstitute_detailed(inputs, steps, indices, n_out, mode, par, with_statu
     failed = numpy.zeros(shape, dtype=bool)
     codes, discs = [], []
     with numpy.errstate(all="ignore"):
-        for (degree, kern, bit), index in zip(steps, indices):
-            a, b, c = kern(*cols, *solved, *par)
+        fused = _all_coefficients(cols, par, coefficients)
+        for k, ((degree, kern, bit), index) in enumerate(zip(steps, indices)):
+            if fused is None:
+                a, b, c = kern(*cols, *solved, *par)
+            else:
+                (a, b, c), fused[k] = fused[k], None
             if per_step is not None:
                 nan_in = numpy.isnan(b) | numpy.isnan(c) | (numpy.isnan(a) if degree == 2
                                                             else False)

@@ -100,6 +100,9 @@ class Model:
     # per step, the earlier steps whose unknowns its kernel's coefficients contain (empty:
     # every earlier step, as a kernel's arguments say)
     step_uses: tuple = ()
+    # every step's (A, B, C) from one program, where no step reads an earlier root (the
+    # module's ``_step_coefficients``), used in place of the step kernels; else None
+    step_coefficients: Kernel | None = None
     # singularities that are the determinant of a matrix: name -> (kernel of its n*n
     # entries, row-major, in the Study coordinates and joints; n)
     singularity_matrices: Mapping[str, tuple] = field(default_factory=dict)
@@ -236,7 +239,7 @@ class Model:
                 shared = self.pose_values(pose, par)
         study = self._study_columns(pose, par, shared)
         q, status = backsubstitute(study, self.steps, self.solve_index, len(self.joints), mode,
-                                   par, with_status)
+                                   par, with_status, coefficients=self.step_coefficients)
         if with_status and not numpy.isfinite(pose).all():
             status[~numpy.all(numpy.isfinite(pose), axis=-1)] = INVALID_INPUT
         return self._checked(pose, study, q, status, par, with_status, limits, shared)
@@ -268,7 +271,8 @@ class Model:
             shared = self.pose_values(pose, par)
         study = self._study_columns(pose, par, shared)
         by_mode = backsubstitute_modes(study, self.steps, self.solve_index, len(self.joints),
-                                       range(self.modes), par, self.step_uses or None)
+                                       range(self.modes), par, self.step_uses or None,
+                                       self.step_coefficients)
         for mode, q in by_mode:
             q, _ = self._checked(pose, study, q, None, par, False, limits, shared)
             self.publish(q)
@@ -352,7 +356,8 @@ class Model:
         with numpy.errstate(all="ignore"):
             study = stacked(self.study_values(pose, par), shape)
         info: dict = {}
-        backsubstitute(study, self.steps, self.solve_index, n, mode, par, True, info)
+        backsubstitute(study, self.steps, self.solve_index, n, mode, par, True, info,
+                       self.step_coefficients)
         roots = info["roots"]  # every step's own root, before the all-or-nothing rule
         codes = numpy.zeros(shape + (n,), dtype=numpy.int8)
         for k, j in enumerate(self.solve_index):
