@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7a968e59283916e8c9a652a8862b465b28af81eb42bd9de0d68573298af831d4
+ * Derivation hash: a6cec6c88747b587e41ed3936d325eb1f084c0139a3444e768930363a8bad7ff
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7a968e59283916e8c9a652a8862b465b28af81eb42bd9de0d68573298af831d4";
+const char bonered_derivation_hash[] = "a6cec6c88747b587e41ed3936d325eb1f084c0139a3444e768930363a8bad7ff";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 94a723f1af097d32c43779f20dc9c47e8a66ad31d130a37089c053cdf986179f
+ * Derivation hash: 1140c465a86f45c018313b362d24616317dfef038a3e6beba027ec05a2383897
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "94a723f1af097d32c43779f20dc9c47e8a66ad31d130a37089c053cdf986179f";
+const char bonered_derivation_hash[] = "1140c465a86f45c018313b362d24616317dfef038a3e6beba027ec05a2383897";
 int bonered_abi(void) { return 3; }
 #endif
 

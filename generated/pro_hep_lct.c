@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: faf9e8c4b5f572157888a164333fe43157ee0bae95232a68b190b392da5b11cc
+ * Derivation hash: 1aea8dc8704a98731cb57850929f5e53f3769315b03f4429c090f2c9095159cb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "faf9e8c4b5f572157888a164333fe43157ee0bae95232a68b190b392da5b11cc";
+const char bonered_derivation_hash[] = "1aea8dc8704a98731cb57850929f5e53f3769315b03f4429c090f2c9095159cb";
 int bonered_abi(void) { return 3; }
 #endif
 

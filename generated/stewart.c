@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b94c608281679a90275c6b1a5f0773aa853dbed74b139d15defc2af0f2a05ab3
+ * Derivation hash: cda8b9b44a68599e50037a30d6bcc509e38c22da71d3f8e279e8a441a8074b18
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b94c608281679a90275c6b1a5f0773aa853dbed74b139d15defc2af0f2a05ab3";
+const char bonered_derivation_hash[] = "cda8b9b44a68599e50037a30d6bcc509e38c22da71d3f8e279e8a441a8074b18";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4a00b2711ec8344513f82733990439db9f65aa3672cda4c5cdfdb93399ee4998
+ * Derivation hash: d90deec8ce876baeb87a84568eac8cea947c9e7ae275f35621ac77fb2467c312
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "4a00b2711ec8344513f82733990439db9f65aa3672cda4c5cdfdb93399ee4998";
+const char bonered_derivation_hash[] = "d90deec8ce876baeb87a84568eac8cea947c9e7ae275f35621ac77fb2467c312";
 int bonered_abi(void) { return 3; }
 #endif
 

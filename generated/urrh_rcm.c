@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 082c2bd6f72bd12e2d4c8cf16923caefdcf5bdb291c3f701fe0fca56e14477a9
+ * Derivation hash: 2263ad84bcd03de8c6d1583f06c257faaa3bee3e5c716c088b88dbcd791a90a7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "082c2bd6f72bd12e2d4c8cf16923caefdcf5bdb291c3f701fe0fca56e14477a9";
+const char bonered_derivation_hash[] = "2263ad84bcd03de8c6d1583f06c257faaa3bee3e5c716c088b88dbcd791a90a7";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy
 
-from .inputs import contiguous_columns
+from .inputs import contiguous_columns, rows_last
 from .status import (
     DISC_RTOL,
     INPUT_SINGULAR,
@@ -75,7 +75,7 @@ def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=Fa
                                   records)
         if failed.any():
             out[:, failed] = numpy.nan
-    return numpy.moveaxis(out, 0, -1), status
+    return rows_last(out), status
 
 
 def _roots(cols, steps, indices, out, mode, par, records=None, fused=None):
@@ -225,7 +225,7 @@ def backsubstitute_modes(inputs, steps, indices, n_out, modes, par, uses=None,
             good = finite if good is None else good & finite
         if good is not None and not good.all():
             q[:, ~good] = numpy.nan
-        yield mode, numpy.moveaxis(q, 0, -1)
+        yield mode, rows_last(q)
 
 
 def _lean_status(inputs, shape, failed, roots, records):
@@ -233,7 +233,9 @@ def _lean_status(inputs, shape, failed, roots, records):
     each step's ``roots`` (not finite where the step failed or an earlier one did) and its
     ``records``."""
 
-    def flat(v):
+    def flat(v):  # an array of the poses' shape as it is (broadcast_to costs microseconds)
+        if isinstance(v, numpy.ndarray) and v.shape == shape:
+            return v.reshape(-1)
         return numpy.reshape(numpy.broadcast_to(v, shape), -1)
 
     invalid = flat(~numpy.all(numpy.isfinite(inputs), axis=-1))
@@ -351,7 +353,7 @@ def backsubstitute_detailed(inputs, steps, indices, n_out, mode, par, with_statu
         per_step["codes"] = (numpy.stack(codes, axis=-1) if codes
                              else numpy.zeros(shape + (0,), dtype=numpy.int8))
         per_step["discriminants"] = discs
-        per_step["roots"] = numpy.moveaxis(out, 0, -1).copy()
+        per_step["roots"] = rows_last(out).copy()
     # a configuration is reachable as a whole or not at all: the status says which leg failed
     out[:, failed] = numpy.nan
-    return numpy.moveaxis(out, 0, -1), status
+    return rows_last(out), status

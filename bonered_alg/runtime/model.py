@@ -16,7 +16,7 @@ from . import fk as fk_solver
 from . import inputs as check
 from . import statics
 from .backsubstitution import backsubstitute, backsubstitute_modes
-from .inputs import columns, contiguous_columns, stacked
+from .inputs import columns, contiguous_columns, rows_last, stacked
 from .status import (
     DET_RTOL,
     INPUT_SINGULAR,
@@ -252,7 +252,7 @@ class Model:
         study = numpy.empty((len(self.study_pose),) + shape)
         for i, v in enumerate(values):
             study[i] = v
-        return numpy.moveaxis(study, 0, -1)
+        return rows_last(study)
 
     def _checked(self, pose, study, q, status, par, with_status, limits, shared):
         """``q`` and the status after the pivot check and, with ``limits``, the limits."""
@@ -870,6 +870,8 @@ def _parameter_chunks(par, shape, n):
     poses ``lo:hi`` of the ``n`` flattened poses of leading ``shape``; scalars as they are
     (the same list each time when every one is), arrays broadcast to the poses and
     sliced."""
+    if getattr(par, "vector", None) is not None:  # checked parameters, every one a scalar
+        return lambda lo, hi: par
     arrays = [i for i, v in enumerate(par) if numpy.ndim(v)]
     if not arrays:
         return lambda lo, hi: par
