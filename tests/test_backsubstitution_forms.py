@@ -228,3 +228,48 @@ def test_quadratic_roots_whatever_the_signs_of_b(signs):
             _step_root(2, a, b, c, minus, dest)
             assert np.array_equal(dest, expected[minus], equal_nan=True), minus
     assert np.isfinite(expected[0]).sum() >= n - 1
+
+
+@pytest.mark.parametrize("name", sorted(MECHANISMS))
+def test_fused_step_coefficients_are_the_step_kernels(name):
+    """Where no IK step reads an earlier root, the module's ``_step_coefficients`` (one CSE
+    program of every step's A, B, C: what the numpy runtime evaluates) gives each step
+    kernel's coefficients to rounding, and the lean and detailed forms fed with it agree
+    bit for bit, roots, NaN and status codes, in every working mode."""
+    m = importlib.import_module(f"bonered_alg.generated.{name}")
+    model = m._MODEL
+    fused_kernel = model.step_coefficients
+    if fused_kernel is None:  # some step reads an earlier root, or there is one step
+        assert any(model.step_uses) or len(model.steps) <= 1
+        return
+    assert not any(model.step_uses)
+    rng = np.random.default_rng(11)
+    home = np.array(m.HOME) if getattr(m, "HOME", None) else np.zeros(len(m.POSE))
+    scale = np.array([40.0 if u == "mm" else 0.4 for u in m.POSE_UNITS])
+    poses = home + rng.uniform(-1.0, 1.0, (2000, len(m.POSE))) * scale
+    poses[::89, 0] = np.nan
+    par = [m.PARAMETERS[k] for k in m.PARAMETERS]
+    study = stacked(model.study_values(poses, par), poses.shape[:-1])
+    cols = [np.ascontiguousarray(study[..., i]) for i in range(study.shape[-1])]
+    shape = (len(poses),)
+    fused = fused_kernel(*cols, *par)
+    assert len(fused) == 3 * len(model.steps)
+    unread = [rng.uniform(0.5, 2.0, len(poses)) for _ in model.steps]  # no kernel reads them
+    for k, (_, kern, _) in enumerate(model.steps):
+        for got, want in zip(fused[3 * k:3 * k + 3], kern(*cols, *unread[:k], *par)):
+            got, want = (np.broadcast_to(np.asarray(v, dtype=float), shape) for v in (got, want))
+            assert np.array_equal(np.isnan(got), np.isnan(want))
+            ok = np.isfinite(want)
+            size = np.max(np.abs(want[ok]), initial=1.0)
+            np.testing.assert_allclose(got[ok], want[ok], rtol=1e-12, atol=1e-12 * size)
+    codes = set()
+    for mode in range(min(model.modes, 8)):
+        args = (study, model.steps, model.solve_index, len(model.joints), mode, par)
+        lean = backsubstitute_lean(*args, True, fused_kernel)
+        _assert_same(lean, backsubstitute_detailed(*args, True, None, fused_kernel))
+        every = dict(backsubstitute_modes(study, model.steps, model.solve_index,
+                                          len(model.joints), [mode], par, model.step_uses,
+                                          fused_kernel))
+        assert np.array_equal(every[mode], lean[0], equal_nan=True)
+        codes |= set(lean[1].tolist())
+    assert st.OK in codes and len(codes) > 1  # valid poses and failures both
