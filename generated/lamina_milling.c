@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a6cec6c88747b587e41ed3936d325eb1f084c0139a3444e768930363a8bad7ff
+ * Derivation hash: 7702f6aa635102e21c495ee38599ddbe3001691222aba0ca87c50fcaef028cc3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a6cec6c88747b587e41ed3936d325eb1f084c0139a3444e768930363a8bad7ff";
+const char bonered_derivation_hash[] = "7702f6aa635102e21c495ee38599ddbe3001691222aba0ca87c50fcaef028cc3";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1140c465a86f45c018313b362d24616317dfef038a3e6beba027ec05a2383897
+ * Derivation hash: 50655306d0ceea351a8c76d3c804be4b4c3438ad887608ea332694f16c8ff7df
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1140c465a86f45c018313b362d24616317dfef038a3e6beba027ec05a2383897";
+const char bonered_derivation_hash[] = "50655306d0ceea351a8c76d3c804be4b4c3438ad887608ea332694f16c8ff7df";
 int bonered_abi(void) { return 3; }
 #endif
 

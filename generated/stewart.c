@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: cda8b9b44a68599e50037a30d6bcc509e38c22da71d3f8e279e8a441a8074b18
+ * Derivation hash: c9282779d9444e1a4b47b00570e89429e7ccfbae84ec40b81679645b26caf5e6
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "cda8b9b44a68599e50037a30d6bcc509e38c22da71d3f8e279e8a441a8074b18";
+const char bonered_derivation_hash[] = "c9282779d9444e1a4b47b00570e89429e7ccfbae84ec40b81679645b26caf5e6";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d90deec8ce876baeb87a84568eac8cea947c9e7ae275f35621ac77fb2467c312
+ * Derivation hash: 858c06be58458facac4c95d82e9c6f813f1d7febc773cceaa7be53dffb982595
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d90deec8ce876baeb87a84568eac8cea947c9e7ae275f35621ac77fb2467c312";
+const char bonered_derivation_hash[] = "858c06be58458facac4c95d82e9c6f813f1d7febc773cceaa7be53dffb982595";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2263ad84bcd03de8c6d1583f06c257faaa3bee3e5c716c088b88dbcd791a90a7
+ * Derivation hash: ad088d4e6bd5b81970980a08ab47cd81c30b3e41279a34b27686f6f071c870bf
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2263ad84bcd03de8c6d1583f06c257faaa3bee3e5c716c088b88dbcd791a90a7";
+const char bonered_derivation_hash[] = "ad088d4e6bd5b81970980a08ab47cd81c30b3e41279a34b27686f6f071c870bf";
 int bonered_abi(void) { return 3; }
 #endif
 

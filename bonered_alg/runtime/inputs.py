@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import operator
 
 import numpy
 
@@ -34,6 +35,9 @@ _PLAIN_SCALARS = (float, int, numpy.float64)
 # from): checked once per model and defaults (the model kept, so that its id is not reused
 # while the entry lives)
 _DEFAULTS: dict[int, tuple] = {}
+# id(model) -> (model, keyword names, their values, the checked parameters, the defaults
+# then): the last keywords checked per model, where every value is a plain scalar
+_KEYWORDS: dict[int, tuple] = {}
 
 
 class Parameters(list):
@@ -70,9 +74,15 @@ def parameters(model, func: str, params: dict) -> Parameters:
     if not params:
         known = _DEFAULTS.get(id(model))
         if (known is not None and known[0] is model and len(known[2]) == len(model.parameters)
-                and all(a is b for a, b in zip(known[2], model.parameters.values()))):
+                and all(map(operator.is_, known[2], model.parameters.values()))):
             return Parameters(known[1], known[1].vector)
     else:
+        known = _KEYWORDS.get(id(model))
+        if (known is not None and known[0] is model and known[1] == tuple(params)
+                and all(map(operator.is_, known[2], params.values()))
+                and len(known[4]) == len(model.parameters)
+                and all(map(operator.is_, known[4], model.parameters.values()))):
+            return Parameters(known[3], known[3].vector)
         unknown = sorted(set(params) - set(model.parameters))
         if unknown:
             raise TypeError(f"{model.mechanism}.{func}: unknown geometric parameter(s) "
@@ -112,6 +122,11 @@ def parameters(model, func: str, params: dict) -> Parameters:
     if not params:  # the defaults passed: the same values while the defaults stay the
         # same objects (a module's PARAMETERS dict assigned a new value is checked again)
         _DEFAULTS[id(model)] = (model, out, tuple(model.parameters.values()))
+    elif all(type(v) in _PLAIN_SCALARS for v in params.values()):
+        # keywords of immutable scalars: the same objects again (a control loop passing
+        # its geometry on every call) give the same values; anything else is checked again
+        _KEYWORDS[id(model)] = (model, tuple(params), tuple(params.values()), out,
+                                tuple(model.parameters.values()))
     return Parameters(out, out.vector)
 
 

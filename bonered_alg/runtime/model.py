@@ -16,6 +16,7 @@ from . import fk as fk_solver
 from . import inputs as check
 from . import statics
 from .backsubstitution import backsubstitute, backsubstitute_modes
+from .compiled import enabled_by_environment
 from .inputs import columns, contiguous_columns, rows_last, stacked
 from .status import (
     DET_RTOL,
@@ -189,8 +190,6 @@ class Model:
                             f"{fast!r}")
         if fast is False:
             return None
-        from .compiled import enabled_by_environment
-
         if fast is None and not enabled_by_environment():
             return None
         why = ""
