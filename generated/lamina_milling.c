@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7702f6aa635102e21c495ee38599ddbe3001691222aba0ca87c50fcaef028cc3
+ * Derivation hash: fb201bc1eff730c1cfdea9293f0e90c22f27f6a8d892dab239f67c9109e970bd
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7702f6aa635102e21c495ee38599ddbe3001691222aba0ca87c50fcaef028cc3";
+const char bonered_derivation_hash[] = "fb201bc1eff730c1cfdea9293f0e90c22f27f6a8d892dab239f67c9109e970bd";
 int bonered_abi(void) { return 3; }
 #endif
 

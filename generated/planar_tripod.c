@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 50655306d0ceea351a8c76d3c804be4b4c3438ad887608ea332694f16c8ff7df
+ * Derivation hash: 75521d29055fb72b5c4f74ca97aa0be2c8d6affc783fe20bf55f44bfe4c17a5e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "50655306d0ceea351a8c76d3c804be4b4c3438ad887608ea332694f16c8ff7df";
+const char bonered_derivation_hash[] = "75521d29055fb72b5c4f74ca97aa0be2c8d6affc783fe20bf55f44bfe4c17a5e";
 int bonered_abi(void) { return 3; }
 #endif
 

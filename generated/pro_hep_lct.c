@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 78c2d0a46a09550d17c32bd1def25f99ac7414a7ea6d1e03312a7d8eefc24bf5
+ * Derivation hash: bdc42ee6a0f3d7a6fb0e21e8c6b3ad68ad82926afe1915ab3039404bec546866
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "78c2d0a46a09550d17c32bd1def25f99ac7414a7ea6d1e03312a7d8eefc24bf5";
+const char bonered_derivation_hash[] = "bdc42ee6a0f3d7a6fb0e21e8c6b3ad68ad82926afe1915ab3039404bec546866";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c9282779d9444e1a4b47b00570e89429e7ccfbae84ec40b81679645b26caf5e6
+ * Derivation hash: f3108857d460d500df02193a5bfa3abbf43127a530e0cb10d2790191e3ba378a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c9282779d9444e1a4b47b00570e89429e7ccfbae84ec40b81679645b26caf5e6";
+const char bonered_derivation_hash[] = "f3108857d460d500df02193a5bfa3abbf43127a530e0cb10d2790191e3ba378a";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 858c06be58458facac4c95d82e9c6f813f1d7febc773cceaa7be53dffb982595
+ * Derivation hash: 592c5dee3a24cb114e3f289bc9cbff7e9520288500522512ba64d580701216db
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "858c06be58458facac4c95d82e9c6f813f1d7febc773cceaa7be53dffb982595";
+const char bonered_derivation_hash[] = "592c5dee3a24cb114e3f289bc9cbff7e9520288500522512ba64d580701216db";
 int bonered_abi(void) { return 3; }
 #endif
 

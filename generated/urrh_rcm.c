@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: ad088d4e6bd5b81970980a08ab47cd81c30b3e41279a34b27686f6f071c870bf
+ * Derivation hash: 83b3dd8965b0ade76c2c03b809652a26f6bbe21e423beeca3842679f69c4b339
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "ad088d4e6bd5b81970980a08ab47cd81c30b3e41279a34b27686f6f071c870bf";
+const char bonered_derivation_hash[] = "83b3dd8965b0ade76c2c03b809652a26f6bbe21e423beeca3842679f69c4b339";
 int bonered_abi(void) { return 3; }
 #endif
 
