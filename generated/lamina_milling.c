@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fb201bc1eff730c1cfdea9293f0e90c22f27f6a8d892dab239f67c9109e970bd
+ * Derivation hash: 2a0cf30d7bd005b86a98e0faf9b2844688cbd803ebf0babc3817f2c9c527e5f2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fb201bc1eff730c1cfdea9293f0e90c22f27f6a8d892dab239f67c9109e970bd";
+const char bonered_derivation_hash[] = "2a0cf30d7bd005b86a98e0faf9b2844688cbd803ebf0babc3817f2c9c527e5f2";
 int bonered_abi(void) { return 3; }
 #endif
 

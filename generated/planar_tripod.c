@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 75521d29055fb72b5c4f74ca97aa0be2c8d6affc783fe20bf55f44bfe4c17a5e
+ * Derivation hash: 1c1daa642607c72697f983c359e6d38f3412bc040ac5a309e9534ae257060fcc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "75521d29055fb72b5c4f74ca97aa0be2c8d6affc783fe20bf55f44bfe4c17a5e";
+const char bonered_derivation_hash[] = "1c1daa642607c72697f983c359e6d38f3412bc040ac5a309e9534ae257060fcc";
 int bonered_abi(void) { return 3; }
 #endif
 

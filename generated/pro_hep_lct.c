@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: bdc42ee6a0f3d7a6fb0e21e8c6b3ad68ad82926afe1915ab3039404bec546866
+ * Derivation hash: 5bfb762e980395599df5e62ebe3140ca5cab04da525050a1e2ac81d57181441b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "bdc42ee6a0f3d7a6fb0e21e8c6b3ad68ad82926afe1915ab3039404bec546866";
+const char bonered_derivation_hash[] = "5bfb762e980395599df5e62ebe3140ca5cab04da525050a1e2ac81d57181441b";
 int bonered_abi(void) { return 3; }
 #endif
 

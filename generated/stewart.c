@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f3108857d460d500df02193a5bfa3abbf43127a530e0cb10d2790191e3ba378a
+ * Derivation hash: 985651e109e440236e5447fd825a4af13c4b38df31dce665dd4d3c6e4e89785d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f3108857d460d500df02193a5bfa3abbf43127a530e0cb10d2790191e3ba378a";
+const char bonered_derivation_hash[] = "985651e109e440236e5447fd825a4af13c4b38df31dce665dd4d3c6e4e89785d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 83b3dd8965b0ade76c2c03b809652a26f6bbe21e423beeca3842679f69c4b339
+ * Derivation hash: 393f79ef4010f536169bfc047edcb9d73c597f32d2e404f1522bfaae224e6b03
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "83b3dd8965b0ade76c2c03b809652a26f6bbe21e423beeca3842679f69c4b339";
+const char bonered_derivation_hash[] = "393f79ef4010f536169bfc047edcb9d73c597f32d2e404f1522bfaae224e6b03";
 int bonered_abi(void) { return 3; }
 #endif
 

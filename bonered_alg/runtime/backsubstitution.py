@@ -48,6 +48,15 @@ def _all_coefficients(cols, par, coefficients):
     return [values[i:i + 3] for i in range(0, len(values), 3)]
 
 
+def _step_coefficients(k, kern, cols, solved, par, fused):
+    """Step ``k``'s ``(A, B, C)``: its kernel's, or from ``fused`` (:func:`_all_coefficients`),
+    whose entry is then released."""
+    if fused is None:
+        return kern(*cols, *solved, *par)
+    out, fused[k] = fused[k], None
+    return out
+
+
 def backsubstitute_lean(inputs, steps, indices, n_out, mode, par, with_status=False,
                         coefficients=None):
     """:func:`backsubstitute_detailed` without the per-step record, in fewer operations.
@@ -88,10 +97,7 @@ def _roots(cols, steps, indices, out, mode, par, records=None, fused=None):
     (:func:`_all_coefficients`), released as each step is solved."""
     solved = []
     for k, ((degree, kern, bit), index) in enumerate(zip(steps, indices)):
-        if fused is None:
-            a, b, c = kern(*cols, *solved, *par)
-        else:
-            (a, b, c), fused[k] = fused[k], None
+        a, b, c = _step_coefficients(k, kern, cols, solved, par, fused)
         dest = out[index, ...]
         record = _step_root(degree, a, b, c, degree == 2 and (mode >> bit) & 1, dest)
         solved.append(dest)
@@ -303,10 +309,7 @@ def backsubstitute_detailed(inputs, steps, indices, n_out, mode, par, with_statu
     with numpy.errstate(all="ignore"):
         fused = _all_coefficients(cols, par, coefficients)
         for k, ((degree, kern, bit), index) in enumerate(zip(steps, indices)):
-            if fused is None:
-                a, b, c = kern(*cols, *solved, *par)
-            else:
-                (a, b, c), fused[k] = fused[k], None
+            a, b, c = _step_coefficients(k, kern, cols, solved, par, fused)
             if per_step is not None:
                 nan_in = numpy.isnan(b) | numpy.isnan(c) | (numpy.isnan(a) if degree == 2
                                                             else False)

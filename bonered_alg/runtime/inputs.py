@@ -60,6 +60,11 @@ class Parameters(list):
         return cls(values, vector)
 
 
+def _same_objects(values: tuple, mapping) -> bool:
+    """True where ``mapping``'s values are the objects ``values``, in order."""
+    return len(values) == len(mapping) and all(map(operator.is_, values, mapping.values()))
+
+
 def parameters(model, func: str, params: dict) -> Parameters:
     """The geometric parameters in ``model.parameters`` order, keywords overriding defaults;
     each finite and within its domain (``model.parameter_domains``: a length is > 0).
@@ -74,15 +79,12 @@ def parameters(model, func: str, params: dict) -> Parameters:
     instead of about 400 (measured with numpy 2 on this project's machine)."""
     if not params:
         known = _DEFAULTS.get(id(model))
-        if (known is not None and known[0] is model and len(known[2]) == len(model.parameters)
-                and all(map(operator.is_, known[2], model.parameters.values()))):
+        if known is not None and known[0] is model and _same_objects(known[2], model.parameters):
             return Parameters(known[1], known[1].vector)
     else:
         known = _KEYWORDS.get(id(model))
         if (known is not None and known[0] is model and known[1] == tuple(params)
-                and all(map(operator.is_, known[2], params.values()))
-                and len(known[4]) == len(model.parameters)
-                and all(map(operator.is_, known[4], model.parameters.values()))):
+                and _same_objects(known[2], params) and _same_objects(known[4], model.parameters)):
             return Parameters(known[3], known[3].vector)
         unknown = sorted(set(params) - set(model.parameters))
         if unknown:
