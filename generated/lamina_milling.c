@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2a0cf30d7bd005b86a98e0faf9b2844688cbd803ebf0babc3817f2c9c527e5f2
+ * Derivation hash: 7fbdf95c5a10069c4c9a1564741c55d13c614efe2e9e70a21c9d030bae825489
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2a0cf30d7bd005b86a98e0faf9b2844688cbd803ebf0babc3817f2c9c527e5f2";
+const char bonered_derivation_hash[] = "7fbdf95c5a10069c4c9a1564741c55d13c614efe2e9e70a21c9d030bae825489";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1c1daa642607c72697f983c359e6d38f3412bc040ac5a309e9534ae257060fcc
+ * Derivation hash: d0e65178dd78416b64a9d13e2b2859dc023f60f7c30925655b58f90b82319ed1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1c1daa642607c72697f983c359e6d38f3412bc040ac5a309e9534ae257060fcc";
+const char bonered_derivation_hash[] = "d0e65178dd78416b64a9d13e2b2859dc023f60f7c30925655b58f90b82319ed1";
 int bonered_abi(void) { return 3; }
 #endif
 

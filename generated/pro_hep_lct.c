@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5bfb762e980395599df5e62ebe3140ca5cab04da525050a1e2ac81d57181441b
+ * Derivation hash: 79b31637c26c0b91cca38b01e67cbbfcbbc99a42a10b0a67863e7e02d67ab5a8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5bfb762e980395599df5e62ebe3140ca5cab04da525050a1e2ac81d57181441b";
+const char bonered_derivation_hash[] = "79b31637c26c0b91cca38b01e67cbbfcbbc99a42a10b0a67863e7e02d67ab5a8";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 985651e109e440236e5447fd825a4af13c4b38df31dce665dd4d3c6e4e89785d
+ * Derivation hash: fe48e7d5a1f13c074171d0734a6fff1a2fbcbab306e7c24a5de68e2007945ac2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "985651e109e440236e5447fd825a4af13c4b38df31dce665dd4d3c6e4e89785d";
+const char bonered_derivation_hash[] = "fe48e7d5a1f13c074171d0734a6fff1a2fbcbab306e7c24a5de68e2007945ac2";
 int bonered_abi(void) { return 3; }
 #endif
 

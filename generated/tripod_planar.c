@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f1a3225e098a076959dddcec589839da7e73764def7a94b289d963f0d52ec1bb
+ * Derivation hash: 7ae7fe84e168fde44336127a49a099ae5f549cc25d6f68077c2afac081304c1c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f1a3225e098a076959dddcec589839da7e73764def7a94b289d963f0d52ec1bb";
+const char bonered_derivation_hash[] = "7ae7fe84e168fde44336127a49a099ae5f549cc25d6f68077c2afac081304c1c";
 int bonered_abi(void) { return 3; }
 #endif
 

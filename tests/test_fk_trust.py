@@ -282,3 +282,33 @@ def test_scaled_step_is_the_svd_least_squares_step_at_every_condition(m, n):
     size = np.abs(ref_step[finite]).max(axis=-1, keepdims=True)
     assert (np.abs(step[finite] - ref_step[finite]) <= 1e-6 * size + 1e-13).all()
     assert ref_ok[finite].any() and not ref_ok[finite].all()
+
+
+@pytest.mark.parametrize("name", ["planar_tripod", "tripod_planar"])
+def test_geometry_per_configuration_at_forward_singularities(name, monkeypatch):
+    """The geometry may be given per configuration (an array of one value per joint
+    configuration).  At and near forward singularities the 3-RPS solver searches for the
+    lost partner of a nearly double root on the configurations with an odd number of real
+    modes only; it took the whole array there and raised a broadcasting error.  With every
+    geometric parameter given as an array of its default, fk and fk_status are those of
+    the scalar defaults, to the bit, and the search ran."""
+    from bonered_alg.runtime import rps
+
+    m = _module(name)
+    rng = np.random.default_rng(11 if name == "planar_tripod" else 3)
+    lo = 40.0 if name == "planar_tripod" else 100.0
+    q = []
+    while len(q) < 21:
+        base = np.array([*rng.uniform(-30, 30, 2), 0.0, *rng.uniform(-0.4, 0.4, 3)])
+        for z_star in singular_heights(m, base, np.linspace(lo, 340.0, 301)):
+            for h in (0.0, 1e-9, -1e-6, 1e-3):
+                q.append(m.ik(np.array([*base[:2], z_star + h, *base[3:]]), limits=False))
+    q = np.array(q)
+    searched = []
+    partners = rps.partners
+    monkeypatch.setattr(rps, "partners", lambda *a: searched.append(1) or partners(*a))
+    scalar, scalar_status = m.fk(q), m.fk_status(q)
+    arrays = {k: np.full(len(q), float(v)) for k, v in m.PARAMETERS.items()}
+    assert searched
+    assert np.array_equal(m.fk(q, **arrays), scalar, equal_nan=True)
+    assert np.array_equal(m.fk_status(q, **arrays), scalar_status)

@@ -380,6 +380,9 @@ def partners(k, theta, converged, ratio, jac, qk, par, pair, raw, odd):
     conv, rat = converged.reshape(-1, n)[idx], ratio.reshape(-1, n)[idx]
     jc = jac.reshape(-1, n, 3, 3)[idx]
     q_sub = [numpy.broadcast_to(v, shape + (1,)).reshape(-1, 1)[idx] for v in qk]
+    # the geometry of those samples, where it is given per configuration
+    par_sub = [p if numpy.ndim(p) == 0 else numpy.broadcast_to(p, shape).reshape(-1)[idx]
+               for p in par]
     raw_sub = numpy.broadcast_to(raw, shape + (1, 3)).reshape(-1, 1, 3)[idx]
     rows = numpy.arange(len(idx))
     order = numpy.argsort(numpy.where(conv, rat, numpy.inf), axis=-1, kind="stable")
@@ -394,7 +397,7 @@ def partners(k, theta, converged, ratio, jac, qk, par, pair, raw, odd):
         _, _, vt = numpy.linalg.svd(numpy.where(numpy.isfinite(j0), j0, 0.0))
         starts = x0[:, None, :] + t[None, :, None] * vt[:, -1, None, :]
         active = numpy.broadcast_to(near[:, None], starts.shape[:-1])
-        new, _, new_jac, ok = newton(k, starts, q_sub, par, pair, raw_sub, active)
+        new, _, new_jac, ok = newton(k, starts, q_sub, par_sub, pair, raw_sub, active)
         for s in range(len(t)):  # each start's root, if new, into a free slot
             point, old = numpy.exp(1j * new[:, s]), numpy.exp(1j * th)
             seen = ((numpy.abs(point[:, None, :] - old) <= MERGE_TOL).all(axis=-1)
