@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7fbdf95c5a10069c4c9a1564741c55d13c614efe2e9e70a21c9d030bae825489
+ * Derivation hash: 33c305a01810bb6168d16c0746ef8ea7f1fed231d9eb1c8b094099b222997985
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7fbdf95c5a10069c4c9a1564741c55d13c614efe2e9e70a21c9d030bae825489";
+const char bonered_derivation_hash[] = "33c305a01810bb6168d16c0746ef8ea7f1fed231d9eb1c8b094099b222997985";
 int bonered_abi(void) { return 3; }
 #endif
 

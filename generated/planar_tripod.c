@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d0e65178dd78416b64a9d13e2b2859dc023f60f7c30925655b58f90b82319ed1
+ * Derivation hash: fab8ab37410a1a62edc281378285d2fc67410c7fcc2242d8adbec694bb7fa53f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d0e65178dd78416b64a9d13e2b2859dc023f60f7c30925655b58f90b82319ed1";
+const char bonered_derivation_hash[] = "fab8ab37410a1a62edc281378285d2fc67410c7fcc2242d8adbec694bb7fa53f";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fe48e7d5a1f13c074171d0734a6fff1a2fbcbab306e7c24a5de68e2007945ac2
+ * Derivation hash: 794c35ed3d424faf63ca2ea11a8639ab0869af871ef5c7a19e52cc2fb3bac946
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fe48e7d5a1f13c074171d0734a6fff1a2fbcbab306e7c24a5de68e2007945ac2";
+const char bonered_derivation_hash[] = "794c35ed3d424faf63ca2ea11a8639ab0869af871ef5c7a19e52cc2fb3bac946";
 int bonered_abi(void) { return 3; }
 #endif
 

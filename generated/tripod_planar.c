@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7ae7fe84e168fde44336127a49a099ae5f549cc25d6f68077c2afac081304c1c
+ * Derivation hash: a4f92b734faf0812627483094698a9c8e83e2208c6df7a7837dff90c53efb404
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7ae7fe84e168fde44336127a49a099ae5f549cc25d6f68077c2afac081304c1c";
+const char bonered_derivation_hash[] = "a4f92b734faf0812627483094698a9c8e83e2208c6df7a7837dff90c53efb404";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7be2519024ac98947ecf2d3fd7e8a0fa2e026dc5327711bc6bf50419c3f42b58
+ * Derivation hash: cef1df021452d190fd937767b0ee9daf04d80153d5ed6737752073a54f67532d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7be2519024ac98947ecf2d3fd7e8a0fa2e026dc5327711bc6bf50419c3f42b58";
+const char bonered_derivation_hash[] = "cef1df021452d190fd937767b0ee9daf04d80153d5ed6737752073a54f67532d";
 int bonered_abi(void) { return 3; }
 #endif
 

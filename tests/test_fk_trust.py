@@ -312,3 +312,34 @@ def test_geometry_per_configuration_at_forward_singularities(name, monkeypatch):
     assert searched
     assert np.array_equal(m.fk(q, **arrays), scalar, equal_nan=True)
     assert np.array_equal(m.fk_status(q, **arrays), scalar_status)
+
+
+@pytest.mark.parametrize("name", ["urrh_rcm", "pro_hep_lct", "tripod_planar"])
+def test_modes_polished_together_or_apart_agree_to_the_bit(name, monkeypatch):
+    """The modes of a configuration are polished and checked together, as many as make
+    fk.MODE_ROWS rows (every mode of a few configurations at once, one mode at a time on
+    many).  Every mode at once, one at a time, and one configuration per call give the same
+    poses and statuses to the bit: on configurations from the IK, perturbed ones, NaN
+    joints and, for pro_hep_lct, joints on and near the lower lex basis's pivot locus t1 =
+    +-w1 (the modes the other elimination order gives: fk.from_charts)."""
+    from bonered_alg.runtime import fk as fk_solver
+
+    m = _module(name)
+    rng = np.random.default_rng(17)
+    q = _configurations(m, rng, 200, 60, 20, 0.5)
+    if name == "pro_hep_lct":
+        w1 = rng.uniform(-1.5, 1.5, 12)
+        t1 = rng.choice([1.0, -1.0], 12) * w1 + np.repeat([0.0, 1e-9, 1e-4], 4)
+        q = np.concatenate([q, np.column_stack([t1, w1, np.full(12, 160.0),
+                                                np.full(12, 200.0)])])
+    monkeypatch.setattr(fk_solver, "MODE_ROWS", 1)
+    apart, apart_status = m.fk(q), m.fk_status(q)
+    monkeypatch.setattr(fk_solver, "MODE_ROWS", 10 ** 9)
+    assert np.array_equal(m.fk(q), apart, equal_nan=True)
+    assert np.array_equal(m.fk_status(q), apart_status)
+    monkeypatch.undo()
+    for k in range(0, len(q), 9):
+        assert np.array_equal(m.fk(q[k]), apart[k], equal_nan=True)
+        assert np.array_equal(m.fk_status(q[k]), apart_status[k])
+    assert np.isfinite(apart).any() and np.isnan(apart).any()
+    assert len(set(apart_status.ravel().tolist())) >= 2

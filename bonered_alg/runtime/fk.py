@@ -172,10 +172,43 @@ def _scaled_step(js, fs, finite):
 def checked_mode(spec, steps, index, q, mode, par, with_status):
     """Study coordinates (..., n) and status of one mode of a back-substitution plan,
     polished and checked (``verify``)."""
-    study, status = backsubstitute(q, steps, index, len(spec.unknowns), mode, par,
-                                   with_status)
-    polished, system = polish(spec, q, study, par)
-    return verify(spec, q, polished, par, status, system)
+    return checked_modes(spec, steps, index, q, (mode,), par, with_status)[0]
+
+
+# configurations x modes polished and checked in one pass (checked_modes): on a few
+# configurations every mode at once (the Python cost of a pass is then paid once, not once
+# per mode), on many one mode at a time (the Newton kernels' temporaries stay in cache)
+MODE_ROWS = 2048
+
+
+def checked_modes(spec, steps, index, q, modes, par, with_status):
+    """:func:`checked_mode` of each mode in ``modes``: the back-substitution mode by mode,
+    then the polish and the check of as many modes together as make at most MODE_ROWS rows
+    (at least one), the modes an axis beside the configurations'.  The same numbers
+    whatever the grouping (each row's arithmetic is its own, as in chunks of
+    configurations: ``model.FK_CHUNK``); on one configuration, one pass of the Newton
+    kernel and of numpy's small-matrix routines instead of one per mode."""
+    subs = [backsubstitute(q, steps, index, len(spec.unknowns), m, par, with_status)
+            for m in modes]
+    rows = int(numpy.prod(q.shape[:-1], dtype=numpy.int64))
+    per = max(1, MODE_ROWS // max(rows, 1))
+    qm, pm = q[..., None, :], against_modes(par)
+    out = []
+    for lo in range(0, len(subs), per):
+        group = subs[lo:lo + per]
+        study = numpy.stack([st for st, _ in group], axis=-2)  # (..., modes, n)
+        status = numpy.stack([s for _, s in group], axis=-1) if with_status else None
+        polished, system = polish(spec, qm, study, pm)
+        study, status = verify(spec, qm, polished, pm, status, system)
+        out += [(study[..., k, :], None if status is None else status[..., k])
+                for k in range(len(group))]
+    return out
+
+
+def against_modes(par):
+    """The parameters, those given per configuration (arrays of the configurations'
+    shape) with an axis for the modes after it."""
+    return [p if numpy.ndim(p) == 0 else numpy.asarray(p)[..., None] for p in par]
 
 
 def primary_mode(spec, q, study, par):
@@ -209,8 +242,8 @@ def from_charts(spec, q, par, solved):
     for steps, index in spec.charts:
         bits = sum(1 for degree, _, _ in steps if degree == 2)
         none_real = numpy.ones(studies.shape[:-2], dtype=bool)
-        for m in range(2 ** bits):
-            study, status = checked_mode(spec, steps, index, q, m, par, True)
+        for study, status in checked_modes(spec, steps, index, q, range(2 ** bits), par,
+                                           True):
             none_real &= status == NO_REAL_SOLUTION
             good = numpy.isfinite(study).all(axis=-1)
             scale = 1.0 + numpy.abs(study[..., None, :])
@@ -254,24 +287,30 @@ def solve_all(model, q, par, with_status):
     else:
         rps = numpy.zeros(shape + (1, 0))
         rps_status = numpy.zeros(shape + (1,), dtype=numpy.int8)
-    solved = []  # the back-substitution modes do not depend on the eliminant's mode
-    for m in range(2 ** len(spec.mode_bits)):
-        if spec.steps:
-            solved.append(checked_mode(spec, spec.steps, spec.index, q, m, par, with_status))
-        else:
-            solved.append((numpy.zeros(shape + (0,)),
-                           numpy.zeros(shape, dtype=numpy.int8) if with_status else None))
+    # the back-substitution modes do not depend on the eliminant's mode
+    n_modes = 2 ** len(spec.mode_bits)
+    if spec.steps:
+        solved = checked_modes(spec, spec.steps, spec.index, q, range(n_modes), par,
+                               with_status)
+    else:
+        solved = [(numpy.zeros(shape + (0,)),
+                   numpy.zeros(shape, dtype=numpy.int8) if with_status else None)] * n_modes
     if spec.charts and any(numpy.isnan(study).any() for study, _ in solved):
         solved = from_charts(spec, q, par, solved)
-    poses, statuses = [], []
-    for r in range(rps.shape[-2]):
-        for study, status in solved:
-            with numpy.errstate(all="ignore"):
-                values = spec.pose(*[rps[..., r, i] for i in range(rps.shape[-1])],
-                                   *columns(study), *par)
-            poses.append(stacked(values, shape))
-            if with_status:
-                status = numpy.where(rps_status[..., r] != OK, rps_status[..., r], status)
-                statuses.append(input_singular(model, poses[-1], q, par, status))
-    return (numpy.stack(poses, axis=-2),
-            numpy.stack(statuses, axis=-1) if with_status else None)
+    # every pair (eliminant mode r, back-substitution mode m), r-major, in one evaluation
+    # of the pose kernel (and of the pivots' kernel): the modes an axis (..., R, M)
+    n_rps = rps.shape[-2]
+    study = numpy.stack([st for st, _ in solved], axis=-2)[..., None, :, :]
+    pm = against_modes(against_modes(par))
+    with numpy.errstate(all="ignore"):
+        values = spec.pose(*[rps[..., :, None, i] for i in range(rps.shape[-1])],
+                           *columns(study), *pm)
+    poses = stacked(values, shape + (n_rps, len(solved)))
+    poses = poses.reshape(shape + (n_rps * len(solved),) + poses.shape[-1:])
+    if not with_status:
+        return poses, None
+    status = numpy.stack([s for _, s in solved], axis=-1)[..., None, :]
+    rps_code = rps_status[..., :, None]
+    status = numpy.where(rps_code != OK, rps_code, status).reshape(shape + (-1,))
+    q_all = numpy.broadcast_to(q[..., None, :], status.shape + q.shape[-1:])
+    return poses, input_singular(model, poses, q_all, against_modes(par), status)
