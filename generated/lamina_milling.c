@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 33c305a01810bb6168d16c0746ef8ea7f1fed231d9eb1c8b094099b222997985
+ * Derivation hash: a403bff6b707ff16a0e054d44904b7bf3adcaae52c27e25514500522fbd3fd3e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "33c305a01810bb6168d16c0746ef8ea7f1fed231d9eb1c8b094099b222997985";
+const char bonered_derivation_hash[] = "a403bff6b707ff16a0e054d44904b7bf3adcaae52c27e25514500522fbd3fd3e";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fab8ab37410a1a62edc281378285d2fc67410c7fcc2242d8adbec694bb7fa53f
+ * Derivation hash: 316997b21b3e34466f67aa1838b01e85993e48ff385414724ffc827868748ec8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fab8ab37410a1a62edc281378285d2fc67410c7fcc2242d8adbec694bb7fa53f";
+const char bonered_derivation_hash[] = "316997b21b3e34466f67aa1838b01e85993e48ff385414724ffc827868748ec8";
 int bonered_abi(void) { return 3; }
 #endif
 

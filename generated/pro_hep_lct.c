@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2b67a4777eb4ff692ac50f4450d0829bf830a815ef8fd7e8ab9e4e7e5c493a50
+ * Derivation hash: 09d96adfd08a54e5859af0b7ca3c95f151d17919c37a522dc625963895920cc2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2b67a4777eb4ff692ac50f4450d0829bf830a815ef8fd7e8ab9e4e7e5c493a50";
+const char bonered_derivation_hash[] = "09d96adfd08a54e5859af0b7ca3c95f151d17919c37a522dc625963895920cc2";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 794c35ed3d424faf63ca2ea11a8639ab0869af871ef5c7a19e52cc2fb3bac946
+ * Derivation hash: 4baf9409eeedddcacb131837cc0f5c41c051e2348c14f8ed2a0442e5dab1bd12
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "794c35ed3d424faf63ca2ea11a8639ab0869af871ef5c7a19e52cc2fb3bac946";
+const char bonered_derivation_hash[] = "4baf9409eeedddcacb131837cc0f5c41c051e2348c14f8ed2a0442e5dab1bd12";
 int bonered_abi(void) { return 3; }
 #endif
 

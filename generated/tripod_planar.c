@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a4f92b734faf0812627483094698a9c8e83e2208c6df7a7837dff90c53efb404
+ * Derivation hash: 7f450892809b19442db065a0b367ba523ae41e02b66140f690f67929760daf46
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a4f92b734faf0812627483094698a9c8e83e2208c6df7a7837dff90c53efb404";
+const char bonered_derivation_hash[] = "7f450892809b19442db065a0b367ba523ae41e02b66140f690f67929760daf46";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: cef1df021452d190fd937767b0ee9daf04d80153d5ed6737752073a54f67532d
+ * Derivation hash: 0ba0929746ee15895d2b16915c15fb5aa5f0fd67b6377532bd3dad76170cd95f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "cef1df021452d190fd937767b0ee9daf04d80153d5ed6737752073a54f67532d";
+const char bonered_derivation_hash[] = "0ba0929746ee15895d2b16915c15fb5aa5f0fd67b6377532bd3dad76170cd95f";
 int bonered_abi(void) { return 3; }
 #endif
 

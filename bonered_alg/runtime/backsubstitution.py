@@ -99,7 +99,7 @@ def _roots(cols, steps, indices, out, mode, par, records=None, fused=None):
     for k, ((degree, kern, bit), index) in enumerate(zip(steps, indices)):
         a, b, c = _step_coefficients(k, kern, cols, solved, par, fused)
         dest = out[index, ...]
-        record = _step_root(degree, a, b, c, degree == 2 and (mode >> bit) & 1, dest)
+        record = _step_root(degree, a, b, c, (mode >> bit) & 1 if degree == 2 else 0, dest)
         solved.append(dest)
         if records is not None:
             records.append(record)
@@ -116,9 +116,19 @@ def _roots(cols, steps, indices, out, mode, par, records=None, fused=None):
     return failed
 
 
+def _times(minus, k, value):
+    """``-k * value`` where ``minus``, else ``k * value``: ``minus`` 0 or 1, or an array of
+    them that broadcasts against the poses (one working mode per entry of an axis of
+    modes, :func:`..fk.checked_modes`), the same numbers either way."""
+    if numpy.ndim(minus) == 0:
+        return (-k if minus else k) * value
+    return numpy.where(minus.astype(bool), -k * value, k * value)
+
+
 def _step_root(degree, a, b, c, minus, dest):
-    """The root of one step written into ``dest`` (the root with ``-sqrt`` where ``minus``);
-    returns the step's record for the status (:func:`_roots`)."""
+    """The root of one step written into ``dest`` (the root with ``-sqrt`` where ``minus``:
+    0 or 1, or an array of them, :func:`_times`); returns the step's record for the status
+    (:func:`_roots`)."""
     if degree == 1:
         numpy.divide(c, b, out=dest)
         numpy.negative(dest, out=dest)  # -(c/b) is (-c)/b: negation is exact
@@ -127,7 +137,7 @@ def _step_root(degree, a, b, c, minus, dest):
         disc = 0.0 - 4.0 * a * c
         ssq = numpy.sqrt(disc)  # NaN where negative: no real root
         # -sqrt / 2A is sqrt / -2A: IEEE negation and division are sign-symmetric
-        numpy.divide(ssq, -2.0 * a if minus else 2.0 * a, out=dest)
+        numpy.divide(ssq, _times(minus, 2.0, a), out=dest)
         return ("pure", disc)
     bb = b * b
     disc = bb - 4.0 * a * c
@@ -146,16 +156,22 @@ def _step_root(degree, a, b, c, minus, dest):
     # 2C / -s (the same numbers: IEEE negation and division are sign-symmetric), the
     # other branch's value divided into ``dest`` where it applies (no temporary array)
     s = numpy.abs(b)
-    s += sq
+    if numpy.shape(s) == numpy.shape(sq):
+        s += sq
+    else:  # B has fewer entries (a scalar; one per configuration beside the modes' axis)
+        s = s + sq
     # where one branch applies to every pose (B of one sign throughout a chunk, as in a
     # workspace), only that branch is divided: the same numbers, one or two passes fewer
-    other = (b < 0.0) if minus else (b > 0.0)
-    if numpy.ndim(other) and other.all():
-        numpy.divide(2.0 * c if minus else -2.0 * c, s, out=dest)
+    if numpy.ndim(minus) == 0:
+        other = (b < 0.0) if minus else (b > 0.0)
     else:
-        numpy.divide(s, -2.0 * a if minus else 2.0 * a, out=dest)
+        other = numpy.where(minus.astype(bool), b < 0.0, b > 0.0)
+    if numpy.ndim(other) and other.all():
+        numpy.divide(_times(1 - minus, 2.0, c), s, out=dest)
+    else:
+        numpy.divide(s, _times(minus, 2.0, a), out=dest)
         if numpy.ndim(other) == 0 or other.any():
-            numpy.divide(2.0 * c if minus else -2.0 * c, s, out=dest, where=other)
+            numpy.divide(_times(1 - minus, 2.0, c), s, out=dest, where=other)
     return ("quadratic", disc, bb)
 
 

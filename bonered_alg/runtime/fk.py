@@ -182,22 +182,22 @@ MODE_ROWS = 2048
 
 
 def checked_modes(spec, steps, index, q, modes, par, with_status):
-    """:func:`checked_mode` of each mode in ``modes``: the back-substitution mode by mode,
-    then the polish and the check of as many modes together as make at most MODE_ROWS rows
-    (at least one), the modes an axis beside the configurations'.  The same numbers
-    whatever the grouping (each row's arithmetic is its own, as in chunks of
-    configurations: ``model.FK_CHUNK``); on one configuration, one pass of the Newton
-    kernel and of numpy's small-matrix routines instead of one per mode."""
-    subs = [backsubstitute(q, steps, index, len(spec.unknowns), m, par, with_status)
-            for m in modes]
+    """:func:`checked_mode` of each mode in ``modes``, as many modes together as make at
+    most MODE_ROWS rows (at least one), the modes an axis beside the configurations': one
+    back-substitution (each step's root of its own sign per mode), one polish and one
+    check per group.  The same numbers whatever the grouping (each row's arithmetic is its
+    own, as in chunks of configurations: ``model.FK_CHUNK``); on one configuration, one
+    pass of each kernel and of numpy's small-matrix routines instead of one per mode."""
+    modes = list(modes)
     rows = int(numpy.prod(q.shape[:-1], dtype=numpy.int64))
     per = max(1, MODE_ROWS // max(rows, 1))
     qm, pm = q[..., None, :], against_modes(par)
     out = []
-    for lo in range(0, len(subs), per):
-        group = subs[lo:lo + per]
-        study = numpy.stack([st for st, _ in group], axis=-2)  # (..., modes, n)
-        status = numpy.stack([s for _, s in group], axis=-1) if with_status else None
+    for lo in range(0, len(modes), per):
+        group = numpy.array(modes[lo:lo + per])
+        inputs = numpy.broadcast_to(qm, q.shape[:-1] + (len(group),) + q.shape[-1:])
+        study, status = backsubstitute(inputs, steps, index, len(spec.unknowns), group, pm,
+                                       with_status)
         polished, system = polish(spec, qm, study, pm)
         study, status = verify(spec, qm, polished, pm, status, system)
         out += [(study[..., k, :], None if status is None else status[..., k])
