@@ -773,10 +773,27 @@ def batch_size_benchmarks(sizes=(1_000, 10_000, 100_000), plain_at=10_000):
 def one_pose_benchmarks(calls=2000):
     """The cost of one call on one pose (a control loop's use): microseconds per call of the
     hand-written numpy, the numpy runtime and the compiled fast path, IK and IK + Jacobian,
-    limits off (median over 7 interleaved rounds of ``calls`` calls each)."""
+    limits off (median over 7 interleaved rounds of ``calls`` calls each); where the module
+    has forward kinematics, ``fk`` and ``fk_status`` of that pose's joints (numpy, the only
+    path; ``calls // 20`` calls a round), and urrh_rcm's hand-written FK of them."""
+    import hand_written as hw
+
     out = {"calls_per_round": calls}
     for name, (m, poses, par, hand) in _hand_written_cases(1, np.random.default_rng(15))[0].items():
         row = {}
+        if m.FK_MODES:
+            q = m.ik(poses, limits=False, **par)
+            fns = [lambda f=f, q=q, k=par: f(q, **k) for f in (m.fk, m.fk_status)]
+            labels = ["fk", "fk_status"]
+            if name == "urrh_rcm":
+                fns.append(lambda q=q, g=m.PARAMETERS: hw.urrh_rcm_fk(q, g))
+                labels.append("hand_written_fk")
+            for fn in fns:
+                fn()
+            times = interleaved_medians([lambda fn=fn: [fn() for _ in range(calls // 20)]
+                                         for fn in fns], 7)
+            for label, t in zip(labels, times):
+                row[f"{label}_one_configuration_us"] = t / (calls // 20) * 1e6
         for label, jac in (("ik", False), ("ik_plus_jacobian", True)):
             gen = m.ik_and_jacobian if jac else m.ik
             fns = [lambda h=hand, j=jac: h(j)] + [

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a403bff6b707ff16a0e054d44904b7bf3adcaae52c27e25514500522fbd3fd3e
+ * Derivation hash: 96bd3fd6dfb6b44380b9ac8809faa8357c7de5b0c834ecb034e22c997a996892
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a403bff6b707ff16a0e054d44904b7bf3adcaae52c27e25514500522fbd3fd3e";
+const char bonered_derivation_hash[] = "96bd3fd6dfb6b44380b9ac8809faa8357c7de5b0c834ecb034e22c997a996892";
 int bonered_abi(void) { return 3; }
 #endif
 

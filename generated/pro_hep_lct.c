@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 09d96adfd08a54e5859af0b7ca3c95f151d17919c37a522dc625963895920cc2
+ * Derivation hash: e8cf69a042981b11bab93ce4113d4cb038de82507235a4a032c5634728a22d53
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "09d96adfd08a54e5859af0b7ca3c95f151d17919c37a522dc625963895920cc2";
+const char bonered_derivation_hash[] = "e8cf69a042981b11bab93ce4113d4cb038de82507235a4a032c5634728a22d53";
 int bonered_abi(void) { return 3; }
 #endif
 

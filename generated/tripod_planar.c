@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7f450892809b19442db065a0b367ba523ae41e02b66140f690f67929760daf46
+ * Derivation hash: 8de00119f453bb1c2d9fe4a12ad4a3ec39d0118638051fc549243f20e12279ba
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7f450892809b19442db065a0b367ba523ae41e02b66140f690f67929760daf46";
+const char bonered_derivation_hash[] = "8de00119f453bb1c2d9fe4a12ad4a3ec39d0118638051fc549243f20e12279ba";
 int bonered_abi(void) { return 3; }
 #endif
 

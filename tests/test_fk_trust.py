@@ -343,3 +343,15 @@ def test_modes_polished_together_or_apart_agree_to_the_bit(name, monkeypatch):
         assert np.array_equal(m.fk_status(q[k]), apart_status[k])
     assert np.isfinite(apart).any() and np.isnan(apart).any()
     assert len(set(apart_status.ravel().tolist())) >= 2
+
+
+@pytest.mark.parametrize("name", ["urrh_rcm", "lamina_milling", "pro_hep_lct",
+                                  "planar_tripod", "tripod_planar"])
+def test_fk_of_no_configurations(name):
+    """An empty batch (no configurations, or an empty axis among others) gives empty poses
+    and statuses of the right shapes, as the IK does (the modes' axis once failed here)."""
+    m = _module(name)
+    for lead in ((0,), (2, 0), (0, 3)):
+        q = np.zeros(lead + (len(m.JOINTS),))
+        assert m.fk(q).shape == lead + (m.FK_MODES, len(m.POSE))
+        assert m.fk_status(q).shape == lead + (m.FK_MODES,)

@@ -11,7 +11,7 @@ import numpy
 
 from . import rps as rps_solver
 from .backsubstitution import backsubstitute
-from .inputs import columns, stacked
+from .inputs import broadcast, columns, stacked
 from .newton import newton_step
 from .status import (
     COND_RTOL,
@@ -31,7 +31,7 @@ def closure_system(spec, q, study, par):
     n = len(spec.unknowns)
     shape = study.shape[:-1]
     values = spec.newton(*columns(study), *columns(q), *par)
-    vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), shape) for v in values]
+    vals = [broadcast(v, shape) for v in values]
     m = len(vals) // (n + 1)
     return (numpy.stack(vals[:m], axis=-1),
             numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n)))
@@ -311,6 +311,6 @@ def solve_all(model, q, par, with_status):
         return poses, None
     status = numpy.stack([s for _, s in solved], axis=-1)[..., None, :]
     rps_code = rps_status[..., :, None]
-    status = numpy.where(rps_code != OK, rps_code, status).reshape(shape + (-1,))
+    status = numpy.where(rps_code != OK, rps_code, status).reshape(poses.shape[:-1])
     q_all = numpy.broadcast_to(q[..., None, :], status.shape + q.shape[-1:])
     return poses, input_singular(model, poses, q_all, against_modes(par), status)

@@ -193,7 +193,16 @@ def contiguous(a: numpy.ndarray) -> numpy.ndarray:
     return a if a.flags.c_contiguous else numpy.array(a)
 
 
+def broadcast(v, shape) -> numpy.ndarray:
+    """``numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)``, or ``v`` itself where it
+    is a float array of that shape already (broadcast_to costs about 2 us a call, paid for
+    every kernel output: hundreds of times in one forward kinematics call).  For values
+    used at once (stacked, compared): the result may be ``v``, writable."""
+    if type(v) is numpy.ndarray and v.shape == shape and v.dtype == numpy.float64:
+        return v
+    return numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+
+
 def stacked(values, shape) -> numpy.ndarray:
     """Kernel outputs (scalars or arrays) broadcast to ``shape`` and stacked on a last axis."""
-    return numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
-                        for v in values], axis=-1)
+    return numpy.stack([broadcast(v, shape) for v in values], axis=-1)

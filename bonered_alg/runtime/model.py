@@ -17,7 +17,7 @@ from . import inputs as check
 from . import statics
 from .backsubstitution import backsubstitute, backsubstitute_modes
 from .compiled import enabled_by_environment
-from .inputs import columns, contiguous_columns, rows_last, stacked
+from .inputs import broadcast, columns, contiguous_columns, rows_last, stacked
 from .status import (
     DET_RTOL,
     INPUT_SINGULAR,
@@ -284,7 +284,7 @@ class Model:
         violated = {"stroke": numpy.zeros(shape, dtype=bool),
                     "passive": numpy.zeros(shape, dtype=bool)}
         for v, (_, lower, upper, kind, _, _) in zip(values, self.limits):
-            v = numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+            v = broadcast(v, shape)
             violated[kind] |= (v < lower) | (v > upper)
         out = violated["stroke"] | violated["passive"]
         if not out.any():  # nothing changes

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy
 
+from .inputs import broadcast
 from .newton import newton_step
 from .status import FORWARD_SINGULAR, NO_REAL_SOLUTION, OK, OUTSIDE_CHART
 
@@ -119,8 +120,8 @@ def scaled(k, theta, qk, par, pair):
     """e_ij / ((1 + u_i^2)(1 + u_j^2)) at u = tan(theta/2) and its Jacobian in theta:
     d/dtheta_k = (de/du_k (1 + u_k^2) / 2 - e u_k) / ((1 + u_i^2)(1 + u_j^2)) for k in {i, j}."""
     u = numpy.tan(theta / 2.0)
-    vals = [numpy.broadcast_to(numpy.asarray(v, dtype=float), u.shape[:-1])
-            for v in k.equations(u[..., 0], u[..., 1], u[..., 2], *qk, *par)]
+    vals = [broadcast(v, u.shape[:-1]) for v in k.equations(u[..., 0], u[..., 1], u[..., 2],
+                                                             *qk, *par)]
     e = numpy.stack(vals[:3], axis=-1)
     de = numpy.stack(vals[3:], axis=-1).reshape(u.shape[:-1] + (3, 3))
     w = 1.0 + u * u
@@ -197,7 +198,7 @@ def solve(k, q, par):
     qc = [q[..., i] for i in range(q.shape[-1])]
     deg = DEGREE
     with numpy.errstate(all="ignore"):
-        c = numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+        c = numpy.stack([broadcast(v, shape)
                          for v in k.coefficients(*qc, *par)], axis=-1)
         raw = numpy.abs(c.reshape(shape + (3, 9))).max(axis=-1)[..., None, :]
         c = c.reshape(shape + (3, 3, 3)) / raw[..., 0, :, None, None]  # each eq. to scale 1
@@ -232,7 +233,7 @@ def solve(k, q, par):
                              NO_REAL_SOLUTION)
         # the 16 modes: solved ones first (by decreasing platform height), then failures
         u = numpy.tan(theta / 2.0)
-        cen = numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), u.shape[:-1])
+        cen = numpy.stack([broadcast(v, u.shape[:-1])
                            for v in k.centres(u[..., 0], u[..., 1], u[..., 2], *qk, *pk)],
                           axis=-1).reshape(u.shape[:-1] + (3, 3))
         height = cen[..., 2].mean(axis=-1)
@@ -240,7 +241,7 @@ def solve(k, q, par):
         order = numpy.argsort(key, axis=-1, kind="stable")[..., :deg]
         cen = numpy.take_along_axis(cen, order[..., None, None], axis=-3)
         status = numpy.take_along_axis(status, order, axis=-1).astype(numpy.int8)
-        plat = numpy.stack([numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
+        plat = numpy.stack([broadcast(v, shape)
                             for v in k.platform(*par)], axis=-1)
         plat = plat.reshape(shape + (1, 3, 3))
 
@@ -255,9 +256,9 @@ def solve(k, q, par):
             numpy.swapaxes(numpy.broadcast_to(wmat, vmat.shape), -1, -2),
             numpy.swapaxes(numpy.where(valid[..., None, None], vmat, 0.0), -1, -2)), -1, -2)
         trans = cen[..., 0, :] - numpy.einsum("...ij,...j->...i", rot, plat[..., 0, :])
-        out = [numpy.broadcast_to(numpy.asarray(v, dtype=float), status.shape)
+        out = [broadcast(v, status.shape)
                for v in k.study(*[rot[..., i, j] for i in range(3) for j in range(3)],
-                                   *[trans[..., i] for i in range(3)])]
+                                *[trans[..., i] for i in range(3)])]
         study = numpy.where(valid[..., None], numpy.stack(out, axis=-1), numpy.nan)
         chart = 1.0 + numpy.trace(rot, axis1=-2, axis2=-1)  # 4 x0^2
         half_turn = valid & (~numpy.isfinite(study).all(axis=-1) | ~(chart > CHART_TOL))
