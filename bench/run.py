@@ -780,6 +780,8 @@ def one_pose_benchmarks(calls=2000):
 
     out = {"calls_per_round": calls}
     for name, (m, poses, par, hand) in _hand_written_cases(1, np.random.default_rng(15))[0].items():
+        if poses.shape[0] != 1:
+            raise RuntimeError(f"one_pose: {name} has {poses.shape[0]} poses, not one")
         row = {}
         if m.FK_MODES:
             q = m.ik(poses, limits=False, **par)
@@ -937,16 +939,20 @@ def membership_benchmarks(n=4_000_000):
 
 
 def reachable_pro_hep_lct(n, rng):
-    """Poses of the Pro-Hep-LCT's planar chains (test geometry) built forward from joints
-    reachable by both lower chains and the upper rod."""
+    """n poses of the Pro-Hep-LCT's planar chains (test geometry) built forward from joints
+    reachable by both lower chains and the upper rod: of 3n candidates (at least 64: of 3,
+    for the one-pose bench, none was reachable, and that bench timed empty batches)."""
     from independent_pro_hep_lct import GEOMETRY as g
     from independent_pro_hep_lct import lower_leg1, upper
 
-    th1, th2 = rng.uniform(-1.2, 1.2, 3 * n), rng.uniform(-2.6, -0.2, 3 * n)
+    k = max(3 * n, 64)
+    th1, th2 = rng.uniform(-1.2, 1.2, k), rng.uniform(-2.6, -0.2, k)
     pd = lower_leg1(th1, th2)
     r = np.hypot(pd[0], pd[1] + g["d"] / 2 - g["lq4d"])
     ok = (abs(g["l3"] - g["l4"]) + 5 < r) & (r < g["l3"] + g["l4"] - 5)
     pd = pd[:, ok][:, :n]
+    if pd.shape[1] < n:
+        raise RuntimeError(f"reachable_pro_hep_lct: {pd.shape[1]} of {n} poses reachable")
     q5 = rng.uniform(100, 300, pd.shape[1])
     q4 = q5 - rng.uniform(20, 150, pd.shape[1])
     xu, yu = upper(q4, q5)
