@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 96bd3fd6dfb6b44380b9ac8809faa8357c7de5b0c834ecb034e22c997a996892
+ * Derivation hash: 62fbdaf6950f9081ede7e01edf0dd7bdfa1dd893faadc4b306b5073dcf6fa0c7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "96bd3fd6dfb6b44380b9ac8809faa8357c7de5b0c834ecb034e22c997a996892";
+const char bonered_derivation_hash[] = "62fbdaf6950f9081ede7e01edf0dd7bdfa1dd893faadc4b306b5073dcf6fa0c7";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3041755dcd7e991197cef378da47662e27a4096833310ce26aa842b3a467b1af
+ * Derivation hash: fe905317682a6b154288f0f3031d390eb4f622d3ddd2e1ac3d363f7a4de4d2b4
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3041755dcd7e991197cef378da47662e27a4096833310ce26aa842b3a467b1af";
+const char bonered_derivation_hash[] = "fe905317682a6b154288f0f3031d390eb4f622d3ddd2e1ac3d363f7a4de4d2b4";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1e4206815e6a51a84a89c02a78ac97f4e2f290a3614306e6c970e9200638af32
+ * Derivation hash: 1587bb02230ef483b88f638666f02af97970e8bc8ae2f11e72a819a0590d12b5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1e4206815e6a51a84a89c02a78ac97f4e2f290a3614306e6c970e9200638af32";
+const char bonered_derivation_hash[] = "1587bb02230ef483b88f638666f02af97970e8bc8ae2f11e72a819a0590d12b5";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8de00119f453bb1c2d9fe4a12ad4a3ec39d0118638051fc549243f20e12279ba
+ * Derivation hash: c8bd9fcb53a9a9c19f152f3f613da2af086672f3baeeeb0915861bdbacc439d7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8de00119f453bb1c2d9fe4a12ad4a3ec39d0118638051fc549243f20e12279ba";
+const char bonered_derivation_hash[] = "c8bd9fcb53a9a9c19f152f3f613da2af086672f3baeeeb0915861bdbacc439d7";
 int bonered_abi(void) { return 3; }
 #endif
 

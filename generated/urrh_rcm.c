@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 03f58dbe0c5b52e01c0d2398b7182b2012ce05682f6435e9583d27c95fe21310
+ * Derivation hash: b666959edaa9a8367482e26c891de70993e7c521ac296bd5bdeecd27a8d76780
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "03f58dbe0c5b52e01c0d2398b7182b2012ce05682f6435e9583d27c95fe21310";
+const char bonered_derivation_hash[] = "b666959edaa9a8367482e26c891de70993e7c521ac296bd5bdeecd27a8d76780";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -120,7 +120,7 @@ def _times(minus, k, value):
     """``-k * value`` where ``minus``, else ``k * value``: ``minus`` 0 or 1, or an array of
     them that broadcasts against the poses (one working mode per entry of an axis of
     modes, :func:`..fk.checked_modes`), the same numbers either way."""
-    if numpy.ndim(minus) == 0:
+    if not isinstance(minus, numpy.ndarray):  # (numpy.ndim costs more than the rest)
         return (-k if minus else k) * value
     return numpy.where(minus.astype(bool), -k * value, k * value)
 
@@ -156,13 +156,13 @@ def _step_root(degree, a, b, c, minus, dest):
     # 2C / -s (the same numbers: IEEE negation and division are sign-symmetric), the
     # other branch's value divided into ``dest`` where it applies (no temporary array)
     s = numpy.abs(b)
-    if numpy.shape(s) == numpy.shape(sq):
+    if s.shape == sq.shape:
         s += sq
     else:  # B has fewer entries (a scalar; one per configuration beside the modes' axis)
         s = s + sq
     # where one branch applies to every pose (B of one sign throughout a chunk, as in a
     # workspace), only that branch is divided: the same numbers, one or two passes fewer
-    if numpy.ndim(minus) == 0:
+    if not isinstance(minus, numpy.ndarray):
         other = (b < 0.0) if minus else (b > 0.0)
     else:
         other = numpy.where(minus.astype(bool), b < 0.0, b > 0.0)
