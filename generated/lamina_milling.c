@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 62fbdaf6950f9081ede7e01edf0dd7bdfa1dd893faadc4b306b5073dcf6fa0c7
+ * Derivation hash: 717a6f243863a0bf7ce8c7b0a15ef6aa79717d94ddf724812fc5f5213c75016e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "62fbdaf6950f9081ede7e01edf0dd7bdfa1dd893faadc4b306b5073dcf6fa0c7";
+const char bonered_derivation_hash[] = "717a6f243863a0bf7ce8c7b0a15ef6aa79717d94ddf724812fc5f5213c75016e";
 int bonered_abi(void) { return 3; }
 #endif
 

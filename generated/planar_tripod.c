@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fe905317682a6b154288f0f3031d390eb4f622d3ddd2e1ac3d363f7a4de4d2b4
+ * Derivation hash: 4bde28001c11dbc7078e0d6687c83356628ff99610f76ef35f2a7576f4d7528e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fe905317682a6b154288f0f3031d390eb4f622d3ddd2e1ac3d363f7a4de4d2b4";
+const char bonered_derivation_hash[] = "4bde28001c11dbc7078e0d6687c83356628ff99610f76ef35f2a7576f4d7528e";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: bf3a325d840370bcbc0a81f261ad870c124f5bd6cdcafe9bd0c343f90f89c689
+ * Derivation hash: 0caf778299e07804f95813acdd9acccc91baf751cb17911c8034517482880ff7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "bf3a325d840370bcbc0a81f261ad870c124f5bd6cdcafe9bd0c343f90f89c689";
+const char bonered_derivation_hash[] = "0caf778299e07804f95813acdd9acccc91baf751cb17911c8034517482880ff7";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1587bb02230ef483b88f638666f02af97970e8bc8ae2f11e72a819a0590d12b5
+ * Derivation hash: 0d41e6df6867d2ffe937628f83982cbae96a45f44b5815fc1354459d88a911d8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1587bb02230ef483b88f638666f02af97970e8bc8ae2f11e72a819a0590d12b5";
+const char bonered_derivation_hash[] = "0d41e6df6867d2ffe937628f83982cbae96a45f44b5815fc1354459d88a911d8";
 int bonered_abi(void) { return 3; }
 #endif
 

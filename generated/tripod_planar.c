@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c8bd9fcb53a9a9c19f152f3f613da2af086672f3baeeeb0915861bdbacc439d7
+ * Derivation hash: 24160ad3162aa578c1777c013b2aa27c52128f7abe07523c8b21c09446e7d13a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c8bd9fcb53a9a9c19f152f3f613da2af086672f3baeeeb0915861bdbacc439d7";
+const char bonered_derivation_hash[] = "24160ad3162aa578c1777c013b2aa27c52128f7abe07523c8b21c09446e7d13a";
 int bonered_abi(void) { return 3; }
 #endif
 

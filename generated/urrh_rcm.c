@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b666959edaa9a8367482e26c891de70993e7c521ac296bd5bdeecd27a8d76780
+ * Derivation hash: 6d785264dc6d383a05df6817b95b480d44cf81acfde25b81dce6e62897fc27d1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b666959edaa9a8367482e26c891de70993e7c521ac296bd5bdeecd27a8d76780";
+const char bonered_derivation_hash[] = "6d785264dc6d383a05df6817b95b480d44cf81acfde25b81dce6e62897fc27d1";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -242,8 +242,11 @@ def from_charts(spec, q, par, solved):
     for steps, index in spec.charts:
         bits = sum(1 for degree, _, _ in steps if degree == 2)
         none_real = numpy.ones(studies.shape[:-2], dtype=bool)
-        for study, status in checked_modes(spec, steps, index, q, range(2 ** bits), par,
-                                           True):
+        found = checked_modes(spec, steps, index, q, range(2 ** bits), par, True)
+        # the mode each solution belongs to, of all of the chart's modes in one evaluation
+        wants = primary_mode(spec, q[..., None, :],
+                             numpy.stack([st for st, _ in found], axis=-2), against_modes(par))
+        for k, (study, status) in enumerate(found):
             none_real &= status == NO_REAL_SOLUTION
             good = numpy.isfinite(study).all(axis=-1)
             scale = 1.0 + numpy.abs(study[..., None, :])
@@ -251,7 +254,7 @@ def from_charts(spec, q, par, solved):
                 same = (numpy.abs(studies - study[..., None, :]) <= 1e-7 * scale).all(axis=-1)
             free = numpy.isnan(studies).any(axis=-1)
             good &= ~same.any(axis=-1) & free.any(axis=-1)
-            want = primary_mode(spec, q, study, par)
+            want = wants[..., k]
             first_free = numpy.argmax(free, axis=-1)
             slot = numpy.where(numpy.take_along_axis(free, want[..., None], axis=-1)[..., 0],
                                want, first_free)
