@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 717a6f243863a0bf7ce8c7b0a15ef6aa79717d94ddf724812fc5f5213c75016e
+ * Derivation hash: f8629f66c559ed02c2aacd11a6f24f6a2b4a7dca946b3694976995a9346cd511
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "717a6f243863a0bf7ce8c7b0a15ef6aa79717d94ddf724812fc5f5213c75016e";
+const char bonered_derivation_hash[] = "f8629f66c559ed02c2aacd11a6f24f6a2b4a7dca946b3694976995a9346cd511";
 int bonered_abi(void) { return 3; }
 #endif
 

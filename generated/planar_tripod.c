@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4bde28001c11dbc7078e0d6687c83356628ff99610f76ef35f2a7576f4d7528e
+ * Derivation hash: 8da87f738e1a4c0e08f6f794bae07d815611ee1cf352be9b8821b589153f2f43
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "4bde28001c11dbc7078e0d6687c83356628ff99610f76ef35f2a7576f4d7528e";
+const char bonered_derivation_hash[] = "8da87f738e1a4c0e08f6f794bae07d815611ee1cf352be9b8821b589153f2f43";
 int bonered_abi(void) { return 3; }
 #endif
 

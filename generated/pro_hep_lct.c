@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0caf778299e07804f95813acdd9acccc91baf751cb17911c8034517482880ff7
+ * Derivation hash: 95cfbf0f6d24182114401c9cdc8ea736dd1578c4fdf3ffe749a2bdfa24a22d77
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0caf778299e07804f95813acdd9acccc91baf751cb17911c8034517482880ff7";
+const char bonered_derivation_hash[] = "95cfbf0f6d24182114401c9cdc8ea736dd1578c4fdf3ffe749a2bdfa24a22d77";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 0d41e6df6867d2ffe937628f83982cbae96a45f44b5815fc1354459d88a911d8
+ * Derivation hash: 73c1a241c2e0910075311f261a09a6daa9e2192872f3b257b2e8d2f5163e7809
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "0d41e6df6867d2ffe937628f83982cbae96a45f44b5815fc1354459d88a911d8";
+const char bonered_derivation_hash[] = "73c1a241c2e0910075311f261a09a6daa9e2192872f3b257b2e8d2f5163e7809";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 24160ad3162aa578c1777c013b2aa27c52128f7abe07523c8b21c09446e7d13a
+ * Derivation hash: 7d87f963d819d1ac10d0c8cade3fc0ffd7d1eaf2b600e4d28466d74572d154c6
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "24160ad3162aa578c1777c013b2aa27c52128f7abe07523c8b21c09446e7d13a";
+const char bonered_derivation_hash[] = "7d87f963d819d1ac10d0c8cade3fc0ffd7d1eaf2b600e4d28466d74572d154c6";
 int bonered_abi(void) { return 3; }
 #endif
 

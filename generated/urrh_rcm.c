@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6d785264dc6d383a05df6817b95b480d44cf81acfde25b81dce6e62897fc27d1
+ * Derivation hash: 55fc4430209743d067cd4d98db08fa62177f2aac6af7a55a89c2b65a9faf5d0f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6d785264dc6d383a05df6817b95b480d44cf81acfde25b81dce6e62897fc27d1";
+const char bonered_derivation_hash[] = "55fc4430209743d067cd4d98db08fa62177f2aac6af7a55a89c2b65a9faf5d0f";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -300,20 +300,26 @@ def solve_all(model, q, par, with_status):
                    numpy.zeros(shape, dtype=numpy.int8) if with_status else None)] * n_modes
     if spec.charts and any(numpy.isnan(study).any() for study, _ in solved):
         solved = from_charts(spec, q, par, solved)
-    # every pair (eliminant mode r, back-substitution mode m), r-major, in one evaluation
-    # of the pose kernel (and of the pivots' kernel): the modes an axis (..., R, M)
-    n_rps = rps.shape[-2]
-    study = numpy.stack([st for st, _ in solved], axis=-2)[..., None, :, :]
-    pm = against_modes(against_modes(par))
-    with numpy.errstate(all="ignore"):
-        values = spec.pose(*[rps[..., :, None, i] for i in range(rps.shape[-1])],
-                           *columns(study), *pm)
-    poses = stacked(values, shape + (n_rps, len(solved)))
-    poses = poses.reshape(shape + (n_rps * len(solved),) + poses.shape[-1:])
-    if not with_status:
-        return poses, None
-    status = numpy.stack([s for _, s in solved], axis=-1)[..., None, :]
-    rps_code = rps_status[..., :, None]
-    status = numpy.where(rps_code != OK, rps_code, status).reshape(poses.shape[:-1])
-    q_all = numpy.broadcast_to(q[..., None, :], status.shape + q.shape[-1:])
-    return poses, input_singular(model, poses, q_all, against_modes(par), status)
+    # every pair (eliminant mode r, back-substitution mode m), r-major; as many pairs in
+    # one evaluation of the pose kernel (and of the pivots' kernel) as make MODE_ROWS rows
+    pairs = [(r, m) for r in range(rps.shape[-2]) for m in range(len(solved))]
+    rows = int(numpy.prod(shape, dtype=numpy.int64))
+    per = max(1, MODE_ROWS // max(rows, 1))
+    pm = against_modes(par)
+    poses, statuses = [], []
+    for lo in range(0, len(pairs), per):
+        rr = [r for r, _ in pairs[lo:lo + per]]
+        mm = [m for _, m in pairs[lo:lo + per]]
+        study = numpy.stack([solved[m][0] for m in mm], axis=-2)  # (..., pairs, n)
+        with numpy.errstate(all="ignore"):
+            values = spec.pose(*[rps[..., rr, i] for i in range(rps.shape[-1])],
+                               *columns(study), *pm)
+        poses.append(stacked(values, shape + (len(rr),)))
+        if with_status:
+            rps_code = rps_status[..., rr]
+            status = numpy.stack([solved[m][1] for m in mm], axis=-1)
+            status = numpy.where(rps_code != OK, rps_code, status)
+            q_all = numpy.broadcast_to(q[..., None, :], status.shape + q.shape[-1:])
+            statuses.append(input_singular(model, poses[-1], q_all, pm, status))
+    return (numpy.concatenate(poses, axis=-2),
+            numpy.concatenate(statuses, axis=-1) if with_status else None)
