@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f8629f66c559ed02c2aacd11a6f24f6a2b4a7dca946b3694976995a9346cd511
+ * Derivation hash: 6c6db4dd03bbf4b84ce12588ff6f6ca59ffd459810e741bbb40862611702977d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f8629f66c559ed02c2aacd11a6f24f6a2b4a7dca946b3694976995a9346cd511";
+const char bonered_derivation_hash[] = "6c6db4dd03bbf4b84ce12588ff6f6ca59ffd459810e741bbb40862611702977d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8da87f738e1a4c0e08f6f794bae07d815611ee1cf352be9b8821b589153f2f43
+ * Derivation hash: 8b47abbf9e636e3c09452fd8cb76ef2a87b6d6bcd31da8f4eb97137c11a1bb74
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8da87f738e1a4c0e08f6f794bae07d815611ee1cf352be9b8821b589153f2f43";
+const char bonered_derivation_hash[] = "8b47abbf9e636e3c09452fd8cb76ef2a87b6d6bcd31da8f4eb97137c11a1bb74";
 int bonered_abi(void) { return 3; }
 #endif
 

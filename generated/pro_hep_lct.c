@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 95cfbf0f6d24182114401c9cdc8ea736dd1578c4fdf3ffe749a2bdfa24a22d77
+ * Derivation hash: b0860f0564c2961751d1c35dc4a465b31e7ea9d803467f4df8f81c847f48c66b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "95cfbf0f6d24182114401c9cdc8ea736dd1578c4fdf3ffe749a2bdfa24a22d77";
+const char bonered_derivation_hash[] = "b0860f0564c2961751d1c35dc4a465b31e7ea9d803467f4df8f81c847f48c66b";
 int bonered_abi(void) { return 3; }
 #endif
 

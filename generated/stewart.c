@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 73c1a241c2e0910075311f261a09a6daa9e2192872f3b257b2e8d2f5163e7809
+ * Derivation hash: a73b30df380a6a38269c83354f3498514bd3862cee5e4b4fb5292c15bf73e90d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "73c1a241c2e0910075311f261a09a6daa9e2192872f3b257b2e8d2f5163e7809";
+const char bonered_derivation_hash[] = "a73b30df380a6a38269c83354f3498514bd3862cee5e4b4fb5292c15bf73e90d";
 int bonered_abi(void) { return 3; }
 #endif
 

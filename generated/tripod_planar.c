@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7d87f963d819d1ac10d0c8cade3fc0ffd7d1eaf2b600e4d28466d74572d154c6
+ * Derivation hash: 3b146788082f7b86a2aa3e2ce524678c4d6281f101dfa4fc914279fe2d772b99
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7d87f963d819d1ac10d0c8cade3fc0ffd7d1eaf2b600e4d28466d74572d154c6";
+const char bonered_derivation_hash[] = "3b146788082f7b86a2aa3e2ce524678c4d6281f101dfa4fc914279fe2d772b99";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 55fc4430209743d067cd4d98db08fa62177f2aac6af7a55a89c2b65a9faf5d0f
+ * Derivation hash: 91b5e700789bbb84145979ac283e08e5a2312c37af9974e81ccc32e9535b4b77
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "55fc4430209743d067cd4d98db08fa62177f2aac6af7a55a89c2b65a9faf5d0f";
+const char bonered_derivation_hash[] = "91b5e700789bbb84145979ac283e08e5a2312c37af9974e81ccc32e9535b4b77";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -177,7 +177,10 @@ def checked_mode(spec, steps, index, q, mode, par, with_status):
 
 # configurations x modes polished and checked in one pass (checked_modes): on a few
 # configurations every mode at once (the Python cost of a pass is then paid once, not once
-# per mode), on many one mode at a time (the Newton kernels' temporaries stay in cache)
+# per mode), on many one mode at a time (the Newton kernels' temporaries stay in cache).
+# Measured on this project's machine, urrh_rcm's fk_status on 30, 100, 300 and 1,000
+# configurations: 11,000, 18,400, 22,600 and 27,000 per s with 2,048 rows; 2,000, 5,200,
+# 14,000 and 23,800 one mode at a time; 10,100, 14,200, 24,600 and 21,100 all at once
 MODE_ROWS = 2048
 
 
