@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6c6db4dd03bbf4b84ce12588ff6f6ca59ffd459810e741bbb40862611702977d
+ * Derivation hash: e50c77610b977ada2abe71b76f6d3312025de355416524fbbddb46c420f8eea3
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6c6db4dd03bbf4b84ce12588ff6f6ca59ffd459810e741bbb40862611702977d";
+const char bonered_derivation_hash[] = "e50c77610b977ada2abe71b76f6d3312025de355416524fbbddb46c420f8eea3";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8b47abbf9e636e3c09452fd8cb76ef2a87b6d6bcd31da8f4eb97137c11a1bb74
+ * Derivation hash: 2430d1f4657325399c85500cc787e1165ba00fd0a670bcc327e4c0a72114902c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8b47abbf9e636e3c09452fd8cb76ef2a87b6d6bcd31da8f4eb97137c11a1bb74";
+const char bonered_derivation_hash[] = "2430d1f4657325399c85500cc787e1165ba00fd0a670bcc327e4c0a72114902c";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b0860f0564c2961751d1c35dc4a465b31e7ea9d803467f4df8f81c847f48c66b
+ * Derivation hash: 2a07c028bdc53227a5dbda4b6eaf09c3baf4b91f435b8f905b262e0fea624aec
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b0860f0564c2961751d1c35dc4a465b31e7ea9d803467f4df8f81c847f48c66b";
+const char bonered_derivation_hash[] = "2a07c028bdc53227a5dbda4b6eaf09c3baf4b91f435b8f905b262e0fea624aec";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a73b30df380a6a38269c83354f3498514bd3862cee5e4b4fb5292c15bf73e90d
+ * Derivation hash: 9157f8a9f79340ebab6ff39a05086acd2401080384ac8245ae1672fdb8cd5b99
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a73b30df380a6a38269c83354f3498514bd3862cee5e4b4fb5292c15bf73e90d";
+const char bonered_derivation_hash[] = "9157f8a9f79340ebab6ff39a05086acd2401080384ac8245ae1672fdb8cd5b99";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3b146788082f7b86a2aa3e2ce524678c4d6281f101dfa4fc914279fe2d772b99
+ * Derivation hash: 724af4bb68c97b9e8c5b9e38a4cf8870426de77f41207342ff0b9c0a7744b476
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3b146788082f7b86a2aa3e2ce524678c4d6281f101dfa4fc914279fe2d772b99";
+const char bonered_derivation_hash[] = "724af4bb68c97b9e8c5b9e38a4cf8870426de77f41207342ff0b9c0a7744b476";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 91b5e700789bbb84145979ac283e08e5a2312c37af9974e81ccc32e9535b4b77
+ * Derivation hash: b574de5f1af0995b82e85ae7f7fa4f1f7fceee536c14a4843f06bf30d0768a9d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "91b5e700789bbb84145979ac283e08e5a2312c37af9974e81ccc32e9535b4b77";
+const char bonered_derivation_hash[] = "b574de5f1af0995b82e85ae7f7fa4f1f7fceee536c14a4843f06bf30d0768a9d";
 int bonered_abi(void) { return 3; }
 #endif
 

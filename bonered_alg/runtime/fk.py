@@ -11,7 +11,7 @@ import numpy
 
 from . import rps as rps_solver
 from .backsubstitution import backsubstitute
-from .inputs import broadcast, columns, stacked
+from .inputs import against_modes, broadcast, columns, stacked
 from .newton import newton_step
 from .status import (
     COND_RTOL,
@@ -184,6 +184,12 @@ def checked_mode(spec, steps, index, q, mode, par, with_status):
 MODE_ROWS = 2048
 
 
+def modes_per_pass(shape) -> int:
+    """How many modes of configurations of leading ``shape`` go in one pass: as many as
+    make at most MODE_ROWS rows, at least one."""
+    return max(1, MODE_ROWS // max(int(numpy.prod(shape, dtype=numpy.int64)), 1))
+
+
 def checked_modes(spec, steps, index, q, modes, par, with_status):
     """:func:`checked_mode` of each mode in ``modes``, as many modes together as make at
     most MODE_ROWS rows (at least one), the modes an axis beside the configurations': one
@@ -192,8 +198,7 @@ def checked_modes(spec, steps, index, q, modes, par, with_status):
     own, as in chunks of configurations: ``model.FK_CHUNK``); on one configuration, one
     pass of each kernel and of numpy's small-matrix routines instead of one per mode."""
     modes = list(modes)
-    rows = int(numpy.prod(q.shape[:-1], dtype=numpy.int64))
-    per = max(1, MODE_ROWS // max(rows, 1))
+    per = modes_per_pass(q.shape[:-1])
     qm, pm = q[..., None, :], against_modes(par)
     out = []
     for lo in range(0, len(modes), per):
@@ -206,12 +211,6 @@ def checked_modes(spec, steps, index, q, modes, par, with_status):
         out += [(study[..., k, :], None if status is None else status[..., k])
                 for k in range(len(group))]
     return out
-
-
-def against_modes(par):
-    """The parameters, those given per configuration (arrays of the configurations'
-    shape) with an axis for the modes after it."""
-    return [p if numpy.ndim(p) == 0 else numpy.asarray(p)[..., None] for p in par]
 
 
 def primary_mode(spec, q, study, par):
@@ -306,8 +305,7 @@ def solve_all(model, q, par, with_status):
     # every pair (eliminant mode r, back-substitution mode m), r-major; as many pairs in
     # one evaluation of the pose kernel (and of the pivots' kernel) as make MODE_ROWS rows
     pairs = [(r, m) for r in range(rps.shape[-2]) for m in range(len(solved))]
-    rows = int(numpy.prod(shape, dtype=numpy.int64))
-    per = max(1, MODE_ROWS // max(rows, 1))
+    per = modes_per_pass(shape)
     pm = against_modes(par)
     poses, statuses = [], []
     for lo in range(0, len(pairs), per):

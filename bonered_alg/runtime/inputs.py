@@ -203,6 +203,13 @@ def broadcast(v, shape) -> numpy.ndarray:
     return numpy.broadcast_to(numpy.asarray(v, dtype=float), shape)
 
 
+def against_modes(par) -> list:
+    """The parameters, those given per configuration (arrays of the configurations'
+    shape) with an axis after it, against which the modes' axis broadcasts (forward
+    kinematics: the modes of a back-substitution, an eliminant's roots)."""
+    return [p if numpy.ndim(p) == 0 else numpy.asarray(p)[..., None] for p in par]
+
+
 def stacked(values, shape) -> numpy.ndarray:
     """Kernel outputs (scalars or arrays) broadcast to ``shape`` and stacked on a last axis."""
     return numpy.stack([broadcast(v, shape) for v in values], axis=-1)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy
 
-from .inputs import broadcast
+from .inputs import against_modes, broadcast
 from .newton import newton_step
 from .status import FORWARD_SINGULAR, NO_REAL_SOLUTION, OK, OUTSIDE_CHART
 
@@ -206,7 +206,7 @@ def solve(k, q, par):
         u, real = candidates(c, w)
         qk = [numpy.asarray(v)[..., None] for v in qc]
         # the geometry alike, where it is given per configuration: against the modes' axis
-        pk = [p if numpy.ndim(p) == 0 else numpy.asarray(p)[..., None] for p in par]
+        pk = against_modes(par)
         # Newton in the joint angles theta = 2 atan(u) on e_ij / ((1 + u_i^2)(1 + u_j^2)),
         # bounded functions of the angles: well conditioned also for legs near theta = pi
         # (the mirror images below the base, u large)
