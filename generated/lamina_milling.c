@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e50c77610b977ada2abe71b76f6d3312025de355416524fbbddb46c420f8eea3
+ * Derivation hash: b275695ed36604f832821617cd81748673475f42d34f8bcc2b8c1228c1faa59f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e50c77610b977ada2abe71b76f6d3312025de355416524fbbddb46c420f8eea3";
+const char bonered_derivation_hash[] = "b275695ed36604f832821617cd81748673475f42d34f8bcc2b8c1228c1faa59f";
 int bonered_abi(void) { return 3; }
 #endif
 

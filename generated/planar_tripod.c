@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2430d1f4657325399c85500cc787e1165ba00fd0a670bcc327e4c0a72114902c
+ * Derivation hash: 2a03fa48641e803a49c301662fca45a7695e3bd8f646bf00162a70b82b4541fa
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2430d1f4657325399c85500cc787e1165ba00fd0a670bcc327e4c0a72114902c";
+const char bonered_derivation_hash[] = "2a03fa48641e803a49c301662fca45a7695e3bd8f646bf00162a70b82b4541fa";
 int bonered_abi(void) { return 3; }
 #endif
 

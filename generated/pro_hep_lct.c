@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2a07c028bdc53227a5dbda4b6eaf09c3baf4b91f435b8f905b262e0fea624aec
+ * Derivation hash: 3f1dc288a149c246084f761b83b258b818eb30817f7256e6b45a1ac8e812852d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2a07c028bdc53227a5dbda4b6eaf09c3baf4b91f435b8f905b262e0fea624aec";
+const char bonered_derivation_hash[] = "3f1dc288a149c246084f761b83b258b818eb30817f7256e6b45a1ac8e812852d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9157f8a9f79340ebab6ff39a05086acd2401080384ac8245ae1672fdb8cd5b99
+ * Derivation hash: aa25e7fc757a0dcc9c17bf209a12efeb3c48265cbc7611ba6df34ae2e436f28d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9157f8a9f79340ebab6ff39a05086acd2401080384ac8245ae1672fdb8cd5b99";
+const char bonered_derivation_hash[] = "aa25e7fc757a0dcc9c17bf209a12efeb3c48265cbc7611ba6df34ae2e436f28d";
 int bonered_abi(void) { return 3; }
 #endif
 

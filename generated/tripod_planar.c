@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 724af4bb68c97b9e8c5b9e38a4cf8870426de77f41207342ff0b9c0a7744b476
+ * Derivation hash: 76dec63620096463f34057950acdae9a7cbb16b4de236b6a0ffa85b9721d6a38
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "724af4bb68c97b9e8c5b9e38a4cf8870426de77f41207342ff0b9c0a7744b476";
+const char bonered_derivation_hash[] = "76dec63620096463f34057950acdae9a7cbb16b4de236b6a0ffa85b9721d6a38";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -218,6 +218,63 @@ def test_verify_on_the_system_polish_kept_decides_as_a_fresh_evaluation(name):
     assert checked > 400
 
 
+def test_verify_rejects_a_least_squares_point_that_is_no_solution():
+    """An overdetermined closure (urrh_rcm: 11 generators in 4 unknowns) has least-squares
+    points where J^T f = 0 and f is not, and a Gauss-Newton step there is zero: verify
+    must still reject such a point (its residual test), and accept the same Jacobian with
+    f at rounding.  Rows of unit norm at x = 0, so that equilibration changes nothing."""
+    from bonered_alg.runtime import fk as fk_solver
+    from bonered_alg.runtime.status import OK, UNVERIFIED
+
+    jac = np.array([[[1.0, 0.0], [0.0, 1.0], [0.0, -1.0], [1.0, 0.0]]] * 2)
+    x = np.zeros((2, 2))
+    f = np.array([[0.0, 1e-4, 1e-4, 0.0],  # J^T f = 0: a stationary point, no root
+                  [1e-17, -2e-17, 0.0, 0.0]])  # a root to rounding
+    study, status = fk_solver.verify(None, None, x, None, np.zeros(2, dtype=np.int8),
+                                     (f, jac))
+    assert status.tolist() == [UNVERIFIED, OK]
+    assert np.isnan(study[0]).all() and np.array_equal(study[1], x[1])
+
+
+# urrh_rcm configurations with alpha2 near a half-turn whose assemblies 05dd4b0..325b523 lost
+# (UNVERIFIED), from the IK of random poses near home (two fuzz runs: 3 of 45,200
+# configurations and 5 of 30,804 assemblies lost)
+HALF_TURN_CONFIGURATIONS = (
+    (-0.013671271939181582, 3.137764292837258, 1.022729316460777, 0.14832293569801402),
+    (-0.03518910200902355, 3.111412492357666, -0.057426446755056065, 0.8500186110500498),
+    (-0.04767760022188687, -3.1161251916438437, -0.06009681851874621, 0.8637465494193429),
+    (-0.04767760022188687, -3.1161251916438437, 1.0426513947834035, 0.8637465494193429),
+    (-0.04087256697857188, -3.1296729123123783, 1.0385744119170328, 0.14786140056071453),
+    (-0.04846061338574577, 3.1311344512956665, 1.0161911295124377, 0.10509781683199995),
+)
+
+
+def test_urrh_rcm_joint_near_a_half_turn_loses_no_assembly():
+    """A U joint near a half-turn (alpha2 -> pi: its tan-half-angle ~ 500) makes the rows of
+    the leg generators' Jacobian differ by up to 16 orders of magnitude.  Gauss-Newton on the
+    raw normal equations (condition squared) moved a correct lex-basis solution 5 mm off and
+    the check declared the mode UNVERIFIED: the assembly was lost.  Every assembly of the
+    independent model (tests/independent_urrh_rcm.py: plain vectors, 002 eq. (8)) must come
+    back under OK (these six configurations, in one batch)."""
+    from independent_urrh_rcm import fk_all
+
+    m = _module("urrh_rcm")
+    par = dict(m.PARAMETERS)
+    qs = np.array(HALF_TURN_CONFIGURATIONS)
+    sols, status = m.fk(qs), m.fk_status(qs)
+    found = 0
+    for q, sol, st in zip(qs, sols, status):
+        exact = fk_all(q, par)
+        assert len(exact) == 4
+        for e in exact:
+            err = np.abs(sol - e)
+            err[:, 3] /= 1.0 + abs(e[3])  # gamma = (d1 - d2) / p: a difference of slides
+            assert ((err.max(axis=-1) < 1e-8) & (st == m.OK)).any(), (q, e, st)
+            found += 1
+        assert (st != m.UNVERIFIED).all(), (q, st)
+    assert found == 4 * len(qs)
+
+
 @pytest.mark.parametrize("name", ["urrh_rcm", "tripod_planar"])
 def test_fk_in_chunks_is_fk_in_one_piece(name, monkeypatch):
     """fk and fk_status evaluate FK_CHUNK configurations at a time: with chunks of 97

@@ -20,6 +20,7 @@ from .status import (
     NO_REAL_SOLUTION,
     OK,
     ON_BOUNDARY,
+    RESIDUAL_RTOL,
     UNVERIFIED,
     VERIFY_RTOL,
 )
@@ -51,11 +52,17 @@ def _flat_rows(arrays, shape):
 
 
 def polish(spec, q, study, par, iterations=6):
-    """Gauss-Newton steps on the (well-conditioned) leg generators, from the lex-basis
-    solution: ``(J^T J) step = J^T f`` (the plain Newton step when J is square).  Each row
-    stops once its step is below STEP_RTOL (1 + |x|), or where the step is not defined: the
-    kernels are evaluated on the rows still moving only (a lex-basis solution needs one or
-    two steps).
+    """Gauss-Newton steps on the leg generators, from the lex-basis solution: the normal
+    equations of the equilibrated system (:func:`equilibrated`, scaled as :func:`verify`
+    scales it), not ``J^T J step = J^T f`` as it comes.  The generators' rows differ by up
+    to 16 orders of magnitude where a tan-half-angle joint is near a half-turn (urrh_rcm
+    with alpha2 = 3.1378: rows from 1 to 5e16); the raw normal equations (condition
+    squared, 1e31) moved a correct lex-basis solution 5 mm off there, and the check
+    declared the mode UNVERIFIED: a real assembly lost.  No SVD cut here (verify's
+    pseudo-inverse): near a pivot locus it converges to a least-squares point where no
+    assembly is.  Each row stops once its step is below STEP_RTOL (1 + |x|), or where the
+    step is not defined: the kernels are evaluated on the rows still moving only (a
+    lex-basis solution needs one or two steps).
 
     Returns the polished unknowns and the closure system ``(f, J)`` at them for
     :func:`verify`: a row that stopped keeps the residuals and Jacobian of its last
@@ -84,11 +91,11 @@ def polish(spec, q, study, par, iterations=6):
         sub = x[rows]
         with numpy.errstate(all="ignore"):
             f, jac = evaluate(rows, sub)
-            jt = numpy.swapaxes(jac, -1, -2)
-            jtj, jtf = jt @ jac, (jt @ f[..., None])[..., 0]
-            step, ok = newton_step(jtf, jtj, numpy.isfinite(jtj).all(axis=(-2, -1))
-                                   & numpy.isfinite(jtf).all(axis=-1))
-            moving = ok & (numpy.abs(step) > STEP_RTOL * (1.0 + numpy.abs(sub))).any(axis=-1)
+            js, fs, scale, finite = equilibrated(f, jac, sub)
+            jt = numpy.swapaxes(js, -1, -2)
+            scaled, ok = newton_step((jt @ fs[..., None])[..., 0], jt @ js, finite)
+            step = scaled * scale
+            moving = ok & (numpy.abs(scaled) > STEP_RTOL).any(axis=-1)
         x[rows] = numpy.where(ok[..., None], sub - step, sub)
         stopped = ~moving
         f_at[rows[stopped]], jac_at[rows[stopped]] = f[stopped], jac[stopped]
@@ -105,24 +112,22 @@ def polish(spec, q, study, par, iterations=6):
 def verify(spec, q, study, par, status, system=None):
     """The check of every back-substituted mode on the closure equations (the leg
     generators; ``system``: their residuals and Jacobian at ``study`` where :func:`polish`
-    has them, else evaluated here): one more Gauss-Newton step must change no unknown by
-    more than VERIFY_RTOL (1 + |x|), else the mode is UNVERIFIED and NaN (a step divided by a pivot
-    near zero: e.g. Pro-Hep-LCT's lower lex basis on t1 = +-w1).  A verified mode where the
+    has them, else evaluated here), equilibrated (:func:`equilibrated`): one more
+    Gauss-Newton step must change no unknown by more than VERIFY_RTOL (1 + |x|) and no
+    equation's residual may exceed RESIDUAL_RTOL of its row, else the mode is UNVERIFIED
+    and NaN (a step divided by a pivot near zero: e.g. Pro-Hep-LCT's lower lex basis on
+    t1 = +-w1).  A verified mode where the
     column-scaled Jacobian is nearly rank deficient is FORWARD_SINGULAR (two assembly modes
     merge); elsewhere a verified mode is OK even where a quadratic step of the basis had a
     double root (ON_BOUNDARY there means a double root of the basis, not a boundary)."""
     with numpy.errstate(all="ignore"):
         f, jac = closure_system(spec, q, study, par) if system is None else system
-        finite = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
-        finite &= numpy.isfinite(study).all(axis=-1)
-        scale = 1.0 + numpy.abs(numpy.where(finite[..., None], study, 0.0))
-        js = numpy.where(finite[..., None, None], jac * scale[..., None, :], 0.0)
-        # each equation to unit scale (the generators' units differ: mm^2, mm^4, ...)
-        rows = numpy.linalg.norm(js, axis=-1)
-        rows = numpy.where(rows > 0, rows, 1.0)
-        js, fs = js / rows[..., None], numpy.where(finite[..., None], f, 0.0) / rows
+        js, fs, _, finite = equilibrated(f, jac, study)
         step, cond_ok = _scaled_step(js, fs, finite)
         verified = finite & (numpy.abs(step) <= VERIFY_RTOL).all(axis=-1)
+        # a zero step alone admits a least-squares point of an overdetermined system (J^T f
+        # = 0, f not 0: urrh_rcm has 11 generators in 4 unknowns) where no assembly is
+        verified &= (numpy.abs(fs) <= RESIDUAL_RTOL).all(axis=-1)
     solved = numpy.isfinite(study).all(axis=-1)
     study = numpy.where(solved[..., None] & ~verified[..., None], numpy.nan, study)
     if status is None:
@@ -136,6 +141,21 @@ def verify(spec, q, study, par, status, system=None):
 # Jacobian far from rank deficiency (COND_RTOL), the normal equations accurate (cond(G) <=
 # 1e8: the step to about 1e-8 of itself)
 CERTIFIED_GRAM = 1e-8
+
+
+def equilibrated(f, jac, x):
+    """The closure system ``(f, J)`` at ``x`` equilibrated: each column of J times
+    ``1 + |x_j|`` (steps then come relative to the unknowns), then each equation divided by
+    its row's norm (the generators' units differ: mm^2, mm^4, ...; a tan-half-angle near a
+    half-turn makes rows of 1e16).  Returns ``(js, fs, 1 + |x|, finite)``: zero rows where
+    f, J or x is not finite."""
+    finite = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
+    finite &= numpy.isfinite(x).all(axis=-1)
+    scale = 1.0 + numpy.abs(numpy.where(finite[..., None], x, 0.0))
+    js = numpy.where(finite[..., None, None], jac * scale[..., None, :], 0.0)
+    rows = numpy.linalg.norm(js, axis=-1)
+    rows = numpy.where(rows > 0, rows, 1.0)
+    return js / rows[..., None], numpy.where(finite[..., None], f, 0.0) / rows, scale, finite
 
 
 def _scaled_step(js, fs, finite):

@@ -39,9 +39,9 @@ STATUS = {
     OUTSIDE_CHART: "the platform is turned by a half-turn (x0 = 0), outside the chart x0 = 1 "
                    "in which the closure is written",
     UNVERIFIED: "the forward-kinematics solution failed its check (a Gauss-Newton step on "
-                "the closure equations did not vanish): a step of the solver divided by a "
-                "pivot near zero, which is not a singularity of the mechanism; no pose is "
-                "returned",
+                "the closure equations did not vanish, or an equation was not satisfied): a "
+                "step of the solver divided by a pivot near zero, which is not a singularity "
+                "of the mechanism; no pose is returned",
     NOT_SOLVED: "not solved: the step that solves this joint uses another joint that has "
                 "no valid value (its own status says why); per-joint status only",
 }
@@ -50,7 +50,10 @@ STATUS = {
 DISC_RTOL = 1e-10
 DET_RTOL = 1e-12
 # forward kinematics: a solution is accepted where one more Gauss-Newton step changes
-# no unknown by more than VERIFY_RTOL (1 + |x|), and is FORWARD_SINGULAR where the
-# closure's Jacobian (columns scaled by 1 + |x|) has sigma_min / sigma_max below COND_RTOL
+# no unknown by more than VERIFY_RTOL (1 + |x|) and each closure equation's residual is at
+# most RESIDUAL_RTOL of its row of the Jacobian (columns scaled by 1 + |x|: a first-order
+# distance to the equation's zero set, relative to the unknowns), and is FORWARD_SINGULAR
+# where that Jacobian has sigma_min / sigma_max below COND_RTOL
 VERIFY_RTOL = 1e-9
+RESIDUAL_RTOL = 1e-10
 COND_RTOL = 1e-8
