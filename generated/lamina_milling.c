@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b275695ed36604f832821617cd81748673475f42d34f8bcc2b8c1228c1faa59f
+ * Derivation hash: e3db09232a54e343613cb79ae83124a1d3564a0ba1d6bab5ab9a7e1f1bb240a8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b275695ed36604f832821617cd81748673475f42d34f8bcc2b8c1228c1faa59f";
+const char bonered_derivation_hash[] = "e3db09232a54e343613cb79ae83124a1d3564a0ba1d6bab5ab9a7e1f1bb240a8";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -150,6 +150,894 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 }
 #endif
 
+
+#if !defined(BF_PART) || BF_PART == 2
+/* Coefficients (A, B, C) of the generator solved for y (from lex basis of the one upper and two bottom chains). */
+BF_INLINE void _fkstep0_y(double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+{
+    const double v__k0 = (v_lOA*v_lOA);
+    const double v__k1 = (v_lOB*v_lOB);
+    const double v__k2 = v_lOA*v_lOB;
+    const double v__k3 = 2.0*v__k2;
+    const double v__k4 = -v__k3;
+    const double v__k5 = v__k0 + v__k1;
+    const double v__k6 = (v_lOA*v_lOA*v_lOA);
+    const double v__k7 = 8.0*v__k6;
+    const double v__k8 = (v_lOB*v_lOB*v_lOB);
+    const double v__k9 = 8.0*v__k8;
+    const double v__k10 = v__k1*v_lOA;
+    const double v__k11 = 16.0*v__k10;
+    const double v__k12 = -v__k11;
+    const double v__k13 = v__k0*v_lOB;
+    const double v__k14 = 16.0*v__k13;
+    const double v__k15 = -v__k14;
+    const double v__k16 = -16.0*v__k6;
+    const double v__k17 = 16.0*v__k8;
+    const double v__k18 = (v_lBM*v_lBM);
+    const double v__k19 = 8.0*v_lOA;
+    const double v__k20 = v__k18*v__k19;
+    const double v__k21 = 8.0*v__k10;
+    const double v__k22 = (v_lAF*v_lAF);
+    const double v__k23 = 8.0*v_lOB;
+    const double v__k24 = v__k22*v__k23;
+    const double v__k25 = 8.0*v__k13;
+    const double v__k26 = 16.0*v_lOA;
+    const double v__k27 = -v__k18*v__k26;
+    const double v__k28 = 16.0*v_lOB;
+    const double v__k29 = v__k22*v__k28;
+    const double v__k30 = v__k22*v__k26;
+    const double v__k31 = 48.0*v__k10;
+    const double v__k32 = v__k20 + v__k21 - 8.0*v__k22*v_lOA + v__k7;
+    const double v__k33 = -8.0*v__k18*v_lOB + v__k24 + v__k25 + v__k9;
+    const double v__k34 = (v_lAF*v_lAF*v_lAF*v_lAF);
+    const double v__k35 = (v_lBM*v_lBM*v_lBM*v_lBM);
+    const double v__k36 = (v_lOA*v_lOA*v_lOA*v_lOA);
+    const double v__k37 = (v_lOB*v_lOB*v_lOB*v_lOB);
+    const double v__k38 = 2.0*v__k34;
+    const double v__k39 = 2.0*v__k35;
+    const double v__k40 = 2.0*v__k36;
+    const double v__k41 = 2.0*v__k37;
+    const double v__k42 = 4.0*v__k22;
+    const double v__k43 = -v__k18*v__k42;
+    const double v__k44 = -v__k0*v__k42;
+    const double v__k45 = -v__k1*v__k42;
+    const double v__k46 = 4.0*v__k18;
+    const double v__k47 = -v__k0*v__k46;
+    const double v__k48 = -v__k1*v__k46;
+    const double v__k49 = v__k0*v__k1;
+    const double v__k50 = -4.0*v__k49;
+    const double v__k51 = 2.0*v__k22;
+    const double v__k52 = -v__k18*v__k51;
+    const double v__k53 = -v__k0*v__k51;
+    const double v__k54 = -v__k1*v__k51;
+    const double v__k55 = 2.0*v__k18;
+    const double v__k56 = -v__k0*v__k55;
+    const double v__k57 = -v__k1*v__k55;
+    const double v__k58 = 4.0*v__k8*v_lOA;
+    const double v__k59 = 4.0*v__k6*v_lOB;
+    const double v__k60 = 4.0*v__k34;
+    const double v__k61 = 4.0*v__k35;
+    const double v__k62 = 4.0*v__k36;
+    const double v__k63 = 4.0*v__k37;
+    const double v__k64 = 6.0*v__k49;
+    const double v__k65 = v__k1*v__k22;
+    const double v__k66 = 12.0*v__k65;
+    const double v__k67 = v__k0*v__k18;
+    const double v__k68 = 12.0*v__k67;
+    const double v__k69 = -40.0*v__k49;
+    const double v__k70 = 8.0*v__k22;
+    const double v__k71 = -v__k18*v__k70;
+    const double v__k72 = -v__k0*v__k70;
+    const double v__k73 = -8.0*v__k1*v__k18;
+    const double v__k74 = v__k2*v__k42;
+    const double v__k75 = -v__k74;
+    const double v__k76 = v__k2*v__k46;
+    const double v__k77 = -v__k76;
+    const double v__k78 = -v__k58;
+    const double v__k79 = -v__k59;
+    const double v__k80 = 24.0*v__k65;
+    const double v__k81 = 24.0*v__k67;
+    const double v__k82 = v__k34 + v__k35 + v__k36 + v__k37 + v__k52 + v__k53 + v__k54 + v__k56 + v__k57 + v__k64;
+    const double v__k83 = v__k38 + v__k39 + v__k40 + v__k41 + v__k43 + v__k44 + v__k48 + v__k50;
+    const double v__s0 = v__k0;
+    const double v__s1 = v__k1;
+    const double v__s2 = v__k3;
+    const double v__s3 = -8.0*v__k2;
+    const double v__s4 = v__k4;
+    const double v__s5 = v__k4 + v__k5;
+    const double v__s6 = v__k3 + v__k5;
+    const double v__s7 = -v__k7;
+    const double v__s8 = -v__k9;
+    const double v__s9 = v__k12;
+    const double v__s10 = v__k15;
+    const double v__s11 = v__k16;
+    const double v__s12 = -v__k17;
+    const double v__s13 = -v__k20;
+    const double v__s14 = -v__k21;
+    const double v__s15 = -v__k24;
+    const double v__s16 = -v__k25;
+    const double v__s17 = v__k19*v__k22;
+    const double v__s18 = v__k18*v__k23;
+    const double v__s19 = v__k11;
+    const double v__s20 = v__k14;
+    const double v__s21 = v__k27;
+    const double v__s22 = -v__k29;
+    const double v__s23 = v__k30;
+    const double v__s24 = v__k18*v__k28;
+    const double v__s25 = v__k31;
+    const double v__s26 = 48.0*v__k13;
+    const double v__s27 = -v__k14 - v__k32;
+    const double v__s28 = -v__k15 - v__k32;
+    const double v__s29 = -v__k12 - v__k33;
+    const double v__s30 = -v__k11 - v__k33;
+    const double v__s31 = v__k16 + v__k27 + v__k30 + v__k31;
+    const double v__s32 = 48.0*v__k0*v_lOB - v__k17 + 16.0*v__k18*v_lOB - v__k29;
+    const double v__s33 = v__k34;
+    const double v__s34 = v__k35;
+    const double v__s35 = v__k36;
+    const double v__s36 = v__k37;
+    const double v__s37 = v__k38;
+    const double v__s38 = v__k39;
+    const double v__s39 = v__k40;
+    const double v__s40 = v__k41;
+    const double v__s41 = v__k43;
+    const double v__s42 = v__k44;
+    const double v__s43 = v__k45;
+    const double v__s44 = v__k47;
+    const double v__s45 = v__k48;
+    const double v__s46 = v__k50;
+    const double v__s47 = v__k52;
+    const double v__s48 = v__k53;
+    const double v__s49 = v__k54;
+    const double v__s50 = v__k56;
+    const double v__s51 = v__k57;
+    const double v__s52 = v__k58;
+    const double v__s53 = v__k59;
+    const double v__s54 = v__k60;
+    const double v__s55 = v__k61;
+    const double v__s56 = v__k62;
+    const double v__s57 = v__k63;
+    const double v__s58 = v__k64;
+    const double v__s59 = v__k66;
+    const double v__s60 = v__k68;
+    const double v__s61 = v__k69;
+    const double v__s62 = v__k71;
+    const double v__s63 = v__k72;
+    const double v__s64 = v__k73;
+    const double v__s65 = v__k75;
+    const double v__s66 = v__k77;
+    const double v__s67 = v__k78;
+    const double v__s68 = v__k79;
+    const double v__s69 = v__k80;
+    const double v__s70 = v__k81;
+    const double v__s71 = v__k74;
+    const double v__s72 = v__k76;
+    const double v__s73 = v__k74 + v__k76 + v__k78 + v__k79 + v__k82;
+    const double v__s74 = v__k58 + v__k59 + v__k75 + v__k77 + v__k82;
+    const double v__s75 = v__k45 + v__k68 + v__k83;
+    const double v__s76 = v__k47 + v__k66 + v__k83;
+    const double v__s77 = v__k60 + v__k61 + v__k62 + v__k63 + v__k69 + v__k71 + v__k72 + v__k73 + v__k80 + v__k81;
+    const double v__c0 = (v_t1*v_t1);
+    const double v__c1 = (v_t2*v_t2);
+    const double v__c2 = v__c0*v__c1;
+    const double v__c3 = (v_t1*v_t1*v_t1);
+    const double v__c4 = (v_t2*v_t2*v_t2);
+    const double v__c5 = (v_t2*v_t2*v_t2*v_t2);
+    const double v__c6 = (v_t1*v_t1*v_t1*v_t1);
+    const double v__c7 = v__s31*v__c1;
+    const double v__c8 = v__s32*v__c0;
+    const double v__c9 = v__s75*v__c0;
+    const double v__c10 = v__s76*v__c1;
+    out[0] = 4.0*(v__c0 + 1.0)*(v__c1 + 1.0)*(v__s6*v__c0 + v__s6*v__c1 + v__s5*v__c2 + v__s3*v_t1*v_t2 + v__s5);
+    out[1] = v__s28*v__c3*v__c5 + v__c3*v__c7 + v__s27*v__c3 + v__s29*v__c4*v__c6 + v__c4*v__c8 + v__s30*v__c4 + v__s27*v__c5*v_t1 + v__s30*v__c6*v_t2 + v__c7*v_t1 + v__c8*v_t2 + v__s28*v_t1 + v__s29*v_t2;
+    out[2] = v__c10*v__c6 + v__c10 + v__s77*v__c2 + v__s73*v__c5*v__c6 + v__c5*v__c9 + v__s74*v__c5 + v__s74*v__c6 + v__c9 + v__s73;
+}
+/* _fkstep0_y on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep0_y_shape[4] = {24, 3, 0, 248};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep0_y_numbers[] = {-1};
+void bonered_rows__fkstep0_y(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep0_y(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], in[19][i * step[19]], in[20][i * step[20]], in[21][i * step[21]], in[22][i * step[22]], in[23][i * step[23]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for x (from lex basis of the one upper and two bottom chains). */
+BF_INLINE void _fkstep1_x(double v_L, double v_t1, double v_t2, double v_y, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+{
+    const double v__k0 = v_lOA - v_lOB;
+    const double v__k1 = v_lOA + v_lOB;
+    const double v__k2 = (v_lBM*v_lBM);
+    const double v__k3 = (v_lOA*v_lOA);
+    const double v__k4 = (v_lAF*v_lAF);
+    const double v__k5 = (v_lOB*v_lOB);
+    const double v__s0 = -v__k0;
+    const double v__s1 = v__k1;
+    const double v__s2 = -v__k1;
+    const double v__s3 = v__k0;
+    const double v__s4 = v__k2;
+    const double v__s5 = v__k3;
+    const double v__s6 = -v__k4;
+    const double v__s7 = -v__k5;
+    const double v__s8 = v__k2 + v__k3 - v__k4 - v__k5;
+    const double v__c0 = (v_t1*v_t1);
+    const double v__c1 = 2.0*v__c0;
+    const double v__c2 = (v_t2*v_t2);
+    const double v__c3 = v__s8*v__c0;
+    const double v__c4 = 4.0*v_y;
+    const double v__c5 = v_lOA*v__c4*v_t1;
+    const double v__c6 = v_lOB*v__c4*v_t2;
+    out[0] = 0.0;
+    out[1] = v__s3*v__c1*v__c2 + v__s1*v__c1 + 2.0*v__s2*v__c2 + 2.0*v__s0;
+    out[2] = v__c0*v__c6 + v__c2*v__c3 - v__c2*v__c5 + v__s8*v__c2 + v__c3 - v__c5 + v__c6 + v__s8;
+}
+/* _fkstep1_x on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep1_x_shape[4] = {25, 3, 1, 42};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep1_x_numbers[] = {0};
+void bonered_rows__fkstep1_x(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep1_x(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], in[19][i * step[19]], in[20][i * step[20]], in[21][i * step[21]], in[22][i * step[22]], in[23][i * step[23]], in[24][i * step[24]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for z (from lex basis of the one upper and two bottom chains). */
+BF_INLINE void _fkstep2_z(double v_L, double v_t1, double v_t2, double v_y, double v_x, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+{
+    const double v__k0 = v_lOA - v_lOB;
+    const double v__k1 = v_lOA + v_lOB;
+    const double v__k2 = (v_dD*v_dD);
+    const double v__k3 = v__k2*v_lOA;
+    const double v__k4 = (v_dy1*v_dy1);
+    const double v__k5 = v__k4*v_lOA;
+    const double v__k6 = (v_dy2*v_dy2);
+    const double v__k7 = v__k6*v_lOA;
+    const double v__k8 = (v_lBM*v_lBM)*v_lOA;
+    const double v__k9 = (v_lDE*v_lDE);
+    const double v__k10 = v__k9*v_lOA;
+    const double v__k11 = (v_lEC*v_lEC);
+    const double v__k12 = v__k11*v_lOA;
+    const double v__k13 = v_lOA*(v_lOB*v_lOB);
+    const double v__k14 = v__k2*v_lOB;
+    const double v__k15 = v__k4*v_lOB;
+    const double v__k16 = v__k6*v_lOB;
+    const double v__k17 = (v_lAF*v_lAF)*v_lOB;
+    const double v__k18 = v__k9*v_lOB;
+    const double v__k19 = v__k11*v_lOB;
+    const double v__k20 = (v_lOA*v_lOA)*v_lOB;
+    const double v__k21 = -v__k12;
+    const double v__k22 = -v__k13;
+    const double v__k23 = -v__k14;
+    const double v__k24 = -v__k15;
+    const double v__k25 = -v__k16;
+    const double v__k26 = -v__k17;
+    const double v__k27 = -v__k18;
+    const double v__k28 = -v__k19;
+    const double v__k29 = -v__k20;
+    const double v__k30 = 2.0*v_dD;
+    const double v__k31 = v__k30*v_lOA;
+    const double v__k32 = 2.0*v_lOB;
+    const double v__k33 = v__k32*v_dy1;
+    const double v__k34 = -v__k33;
+    const double v__k35 = v__k32*v_dy2;
+    const double v__k36 = -v__k35;
+    const double v__k37 = v__k32*v_lDE;
+    const double v__k38 = -v__k37;
+    const double v__k39 = v__k30*v_lOB;
+    const double v__k40 = 2.0*v_lOA;
+    const double v__k41 = v__k40*v_dy1;
+    const double v__k42 = v__k40*v_dy2;
+    const double v__k43 = v__k40*v_lDE;
+    const double v__k44 = 4.0*v_lOA*v_lOB;
+    const double v__k45 = -v__k39;
+    const double v__k46 = v__k41*v_dy2;
+    const double v__k47 = v__k33*v_dy2;
+    const double v__k48 = -v__k47;
+    const double v__k49 = v__k41*v_lDE;
+    const double v__k50 = v__k33*v_lDE;
+    const double v__k51 = -v__k50;
+    const double v__k52 = v__k42*v_lDE;
+    const double v__k53 = v__k35*v_lDE;
+    const double v__k54 = -v__k53;
+    const double v__k55 = v__k31 + v__k45;
+    const double v__k56 = v__k10 + v__k21 + v__k22 + v__k3 + v__k46 + v__k49 + v__k5 + v__k52 + v__k7 + v__k8;
+    const double v__k57 = v__k14 + v__k15 + v__k16 + v__k17 + v__k18 + v__k28 + v__k29 + v__k47 + v__k50 + v__k53 + v__k56;
+    const double v__k58 = v__k41 + v__k42 + v__k43;
+    const double v__k59 = v__k34 + v__k36 + v__k38 + v__k58;
+    const double v__k60 = v__k19 + v__k20 + v__k23 + v__k24 + v__k25 + v__k26 + v__k27 + v__k48 + v__k51 + v__k54 + v__k56;
+    const double v__k61 = v__k31 + v__k39;
+    const double v__k62 = v__k33 + v__k35 + v__k37 + v__k58;
+    const double v__s0 = -v__k0;
+    const double v__s1 = v__k1;
+    const double v__s2 = -v__k1;
+    const double v__s3 = v__k0;
+    const double v__s4 = v__k3;
+    const double v__s5 = v__k5;
+    const double v__s6 = v__k7;
+    const double v__s7 = v__k8;
+    const double v__s8 = v__k10;
+    const double v__s9 = v__k12;
+    const double v__s10 = v__k13;
+    const double v__s11 = v__k14;
+    const double v__s12 = v__k15;
+    const double v__s13 = v__k16;
+    const double v__s14 = v__k17;
+    const double v__s15 = v__k18;
+    const double v__s16 = v__k19;
+    const double v__s17 = v__k20;
+    const double v__s18 = -v__k3;
+    const double v__s19 = -v__k5;
+    const double v__s20 = -v__k7;
+    const double v__s21 = -v__k8;
+    const double v__s22 = -v__k10;
+    const double v__s23 = v__k21;
+    const double v__s24 = v__k22;
+    const double v__s25 = v__k23;
+    const double v__s26 = v__k24;
+    const double v__s27 = v__k25;
+    const double v__s28 = v__k26;
+    const double v__s29 = v__k27;
+    const double v__s30 = v__k28;
+    const double v__s31 = v__k29;
+    const double v__s32 = -v__k31;
+    const double v__s33 = v__k34;
+    const double v__s34 = v__k36;
+    const double v__s35 = v__k38;
+    const double v__s36 = v__k39;
+    const double v__s37 = v__k41;
+    const double v__s38 = v__k42;
+    const double v__s39 = v__k43;
+    const double v__s40 = -v__k44;
+    const double v__s41 = v__k45;
+    const double v__s42 = -v__k46;
+    const double v__s43 = v__k48;
+    const double v__s44 = -v__k49;
+    const double v__s45 = v__k51;
+    const double v__s46 = -v__k41;
+    const double v__s47 = -v__k52;
+    const double v__s48 = v__k54;
+    const double v__s49 = -v__k42;
+    const double v__s50 = -v__k43;
+    const double v__s51 = v__k31;
+    const double v__s52 = v__k46;
+    const double v__s53 = v__k47;
+    const double v__s54 = v__k49;
+    const double v__s55 = v__k50;
+    const double v__s56 = v__k33;
+    const double v__s57 = v__k52;
+    const double v__s58 = v__k53;
+    const double v__s59 = v__k35;
+    const double v__s60 = v__k37;
+    const double v__s61 = v__k44;
+    const double v__s62 = -v__k55;
+    const double v__s63 = -v__k57;
+    const double v__s64 = v__k57;
+    const double v__s65 = v__k59;
+    const double v__s66 = -v__k60;
+    const double v__s67 = -v__k61;
+    const double v__s68 = v__k61;
+    const double v__s69 = v__k60;
+    const double v__s70 = -v__k62;
+    const double v__s71 = v__k62;
+    const double v__s72 = v__k55;
+    const double v__s73 = -v__k59;
+    const double v__c0 = (v_t1*v_t1);
+    const double v__c1 = v__s1*v__c0;
+    const double v__c2 = (v_t2*v_t2);
+    const double v__c3 = v__s2*v__c2;
+    const double v__c4 = v__c0*v__c2;
+    const double v__c5 = v__s3*v__c4;
+    const double v__c6 = v__c1 + v__c3 + v__c5 + v__s0;
+    const double v__c7 = v__s40*v_y;
+    const double v__c8 = v__s61*v_y;
+    const double v__c9 = (v_L*v_L);
+    out[0] = v__c6;
+    out[1] = -2.0*v__c6*(v_L + v_dD);
+    out[2] = v__s68*v_L*v__c0 + v__s67*v_L*v__c2 + v__s72*v_L*v__c4 + v__s62*v_L + v__c0*v__c8*v_t2 + v__s64*v__c0 + v__s70*v__c0*v_y + v__c1*v__c9 + v__c2*v__c7*v_t1 + v__s63*v__c2 + v__s71*v__c2*v_y + v__c3*v__c9 + v__s69*v__c4 + v__s73*v__c4*v_y + v__c5*v__c9 + v__c7*v_t2 + v__c8*v_t1 + v__s0*v__c9 + v__s65*v_y + v__s66;
+}
+/* _fkstep2_z on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep2_z_shape[4] = {26, 3, 0, 182};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep2_z_numbers[] = {-1};
+void bonered_rows__fkstep2_z(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep2_z(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], in[19][i * step[19]], in[20][i * step[20]], in[21][i * step[21]], in[22][i * step[22]], in[23][i * step[23]], in[24][i * step[24]], in[25][i * step[25]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for x (from lex basis of the one upper and two bottom chains). */
+BF_INLINE void _fkchart1_step0_x(double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+{
+    const double v__k0 = (v_lOA*v_lOA);
+    const double v__k1 = (v_lOB*v_lOB);
+    const double v__k2 = v_lOA*v_lOB;
+    const double v__k3 = 2.0*v__k2;
+    const double v__k4 = -v__k3;
+    const double v__k5 = v__k0 + v__k1;
+    const double v__k6 = (v_lOA*v_lOA*v_lOA);
+    const double v__k7 = 8.0*v__k6;
+    const double v__k8 = (v_lOB*v_lOB*v_lOB);
+    const double v__k9 = 8.0*v__k8;
+    const double v__k10 = 4.0*v__k6;
+    const double v__k11 = -v__k10;
+    const double v__k12 = 4.0*v__k8;
+    const double v__k13 = -v__k12;
+    const double v__k14 = v__k1*v_lOA;
+    const double v__k15 = 24.0*v__k14;
+    const double v__k16 = v__k0*v_lOB;
+    const double v__k17 = 24.0*v__k16;
+    const double v__k18 = (v_lBM*v_lBM);
+    const double v__k19 = v__k18*v_lOA;
+    const double v__k20 = 8.0*v__k19;
+    const double v__k21 = (v_lAF*v_lAF);
+    const double v__k22 = v__k21*v_lOB;
+    const double v__k23 = 8.0*v__k22;
+    const double v__k24 = v__k21*v_lOA;
+    const double v__k25 = 4.0*v__k24;
+    const double v__k26 = 4.0*v__k19;
+    const double v__k27 = -v__k26;
+    const double v__k28 = 4.0*v__k14;
+    const double v__k29 = 4.0*v__k22;
+    const double v__k30 = -v__k29;
+    const double v__k31 = v__k18*v_lOB;
+    const double v__k32 = 4.0*v__k31;
+    const double v__k33 = -v__k32;
+    const double v__k34 = 4.0*v__k16;
+    const double v__k35 = -v__k34;
+    const double v__k36 = 8.0*v__k24;
+    const double v__k37 = 8.0*v__k31;
+    const double v__k38 = 32.0*v__k14;
+    const double v__k39 = -v__k38;
+    const double v__k40 = 32.0*v__k16;
+    const double v__k41 = -v__k36;
+    const double v__k42 = -v__k37;
+    const double v__k43 = v__k11 + v__k25 + v__k27 + v__k28;
+    const double v__k44 = v__k13 + v__k30 + v__k32 + v__k34 + v__k43;
+    const double v__k45 = v__k12 + v__k29 + v__k33 + v__k35 + v__k43;
+    const double v__k46 = v__k15 + v__k20 + v__k41 + v__k7;
+    const double v__k47 = v__k17 + v__k23 + v__k42 + v__k9;
+    const double v__k48 = v__k39 + v__k40;
+    const double v__k49 = v__k38 + v__k40;
+    const double v__k50 = (v_lAF*v_lAF*v_lAF*v_lAF);
+    const double v__k51 = (v_lBM*v_lBM*v_lBM*v_lBM);
+    const double v__k52 = (v_lOA*v_lOA*v_lOA*v_lOA);
+    const double v__k53 = (v_lOB*v_lOB*v_lOB*v_lOB);
+    const double v__k54 = 2.0*v__k50;
+    const double v__k55 = 2.0*v__k51;
+    const double v__k56 = 2.0*v__k52;
+    const double v__k57 = 2.0*v__k53;
+    const double v__k58 = v__k1*v__k21;
+    const double v__k59 = -12.0*v__k58;
+    const double v__k60 = v__k0*v__k18;
+    const double v__k61 = -12.0*v__k60;
+    const double v__k62 = 4.0*v__k21;
+    const double v__k63 = -v__k18*v__k62;
+    const double v__k64 = -v__k0*v__k62;
+    const double v__k65 = v__k1*v__k18;
+    const double v__k66 = -4.0*v__k65;
+    const double v__k67 = 2.0*v__k21;
+    const double v__k68 = -v__k18*v__k67;
+    const double v__k69 = -v__k0*v__k67;
+    const double v__k70 = -2.0*v__k65;
+    const double v__k71 = v__k0*v__k1;
+    const double v__k72 = -2.0*v__k71;
+    const double v__k73 = 2.0*v__k58;
+    const double v__k74 = 2.0*v__k60;
+    const double v__k75 = 4.0*v__k58;
+    const double v__k76 = 4.0*v__k50;
+    const double v__k77 = 4.0*v__k60;
+    const double v__k78 = 4.0*v__k51;
+    const double v__k79 = 4.0*v__k52;
+    const double v__k80 = 4.0*v__k53;
+    const double v__k81 = 12.0*v__k71;
+    const double v__k82 = -24.0*v__k58;
+    const double v__k83 = -24.0*v__k60;
+    const double v__k84 = -16.0*v__k8*v_lOA;
+    const double v__k85 = -16.0*v__k6*v_lOB;
+    const double v__k86 = 8.0*v__k21;
+    const double v__k87 = -v__k18*v__k86;
+    const double v__k88 = -v__k0*v__k86;
+    const double v__k89 = -8.0*v__k65;
+    const double v__k90 = 56.0*v__k71;
+    const double v__k91 = 16.0*v__k2;
+    const double v__k92 = v__k21*v__k91;
+    const double v__k93 = v__k18*v__k91;
+    const double v__k94 = v__k54 + v__k55 + v__k56 + v__k57 + v__k63 + v__k64 + v__k66 + v__k81;
+    const double v__s0 = v__k0;
+    const double v__s1 = v__k1;
+    const double v__s2 = v__k3;
+    const double v__s3 = -8.0*v__k2;
+    const double v__s4 = v__k4;
+    const double v__s5 = v__k4 + v__k5;
+    const double v__s6 = v__k3 + v__k5;
+    const double v__s7 = -v__k7;
+    const double v__s8 = -v__k9;
+    const double v__s9 = v__k11;
+    const double v__s10 = v__k13;
+    const double v__s11 = v__k10;
+    const double v__s12 = v__k12;
+    const double v__s13 = -v__k15;
+    const double v__s14 = -v__k17;
+    const double v__s15 = -v__k20;
+    const double v__s16 = -v__k23;
+    const double v__s17 = -v__k25;
+    const double v__s18 = v__k27;
+    const double v__s19 = -v__k28;
+    const double v__s20 = v__k30;
+    const double v__s21 = v__k33;
+    const double v__s22 = v__k35;
+    const double v__s23 = v__k25;
+    const double v__s24 = v__k26;
+    const double v__s25 = v__k28;
+    const double v__s26 = v__k29;
+    const double v__s27 = v__k32;
+    const double v__s28 = v__k34;
+    const double v__s29 = v__k36;
+    const double v__s30 = v__k37;
+    const double v__s31 = v__k7;
+    const double v__s32 = v__k9;
+    const double v__s33 = v__k39;
+    const double v__s34 = -v__k40;
+    const double v__s35 = v__k41;
+    const double v__s36 = v__k42;
+    const double v__s37 = v__k20;
+    const double v__s38 = v__k23;
+    const double v__s39 = v__k15;
+    const double v__s40 = v__k17;
+    const double v__s41 = v__k38;
+    const double v__s42 = v__k40;
+    const double v__s43 = v__k44;
+    const double v__s44 = -v__k45;
+    const double v__s45 = v__k45;
+    const double v__s46 = -v__k46;
+    const double v__s47 = -v__k47;
+    const double v__s48 = -v__k44;
+    const double v__s49 = v__k46;
+    const double v__s50 = v__k47;
+    const double v__s51 = v__k48;
+    const double v__s52 = -v__k49;
+    const double v__s53 = -v__k48;
+    const double v__s54 = v__k49;
+    const double v__s55 = v__k50;
+    const double v__s56 = v__k51;
+    const double v__s57 = v__k52;
+    const double v__s58 = v__k53;
+    const double v__s59 = v__k54;
+    const double v__s60 = v__k55;
+    const double v__s61 = v__k56;
+    const double v__s62 = v__k57;
+    const double v__s63 = v__k59;
+    const double v__s64 = v__k61;
+    const double v__s65 = v__k63;
+    const double v__s66 = v__k64;
+    const double v__s67 = v__k66;
+    const double v__s68 = v__k68;
+    const double v__s69 = v__k69;
+    const double v__s70 = v__k70;
+    const double v__s71 = v__k72;
+    const double v__s72 = v__k73;
+    const double v__s73 = v__k74;
+    const double v__s74 = v__k75;
+    const double v__s75 = v__k76;
+    const double v__s76 = v__k77;
+    const double v__s77 = v__k78;
+    const double v__s78 = v__k79;
+    const double v__s79 = v__k80;
+    const double v__s80 = v__k81;
+    const double v__s81 = v__k82;
+    const double v__s82 = v__k83;
+    const double v__s83 = v__k84;
+    const double v__s84 = v__k85;
+    const double v__s85 = v__k87;
+    const double v__s86 = v__k88;
+    const double v__s87 = v__k89;
+    const double v__s88 = v__k90;
+    const double v__s89 = v__k92;
+    const double v__s90 = v__k93;
+    const double v__s91 = v__k50 + v__k51 + v__k52 + v__k53 + v__k68 + v__k69 + v__k70 + v__k72 + v__k73 + v__k74;
+    const double v__s92 = v__k61 + v__k75 + v__k94;
+    const double v__s93 = v__k59 + v__k77 + v__k94;
+    const double v__s94 = v__k76 + v__k78 + v__k79 + v__k80 + v__k82 + v__k83 + v__k87 + v__k88 + v__k89 + v__k90;
+    const double v__s95 = v__k84 + v__k85 + v__k92 + v__k93;
+    const double v__c0 = (v_t1*v_t1);
+    const double v__c1 = (v_t2*v_t2);
+    const double v__c2 = v_t1*v_t2;
+    const double v__c3 = v__c0*v__c1;
+    const double v__c4 = (v_t1*v_t1*v_t1*v_t1);
+    const double v__c5 = (v_t2*v_t2*v_t2*v_t2);
+    const double v__c6 = (v_t2*v_t2*v_t2);
+    const double v__c7 = v__c6*v_t1;
+    const double v__c8 = (v_t1*v_t1*v_t1);
+    const double v__c9 = v__c8*v_t2;
+    const double v__c10 = v__c6*v__c8;
+    const double v__c11 = v__s91*v__c4;
+    const double v__c12 = v__s92*v__c0;
+    const double v__c13 = v__s93*v__c1;
+    out[0] = 4.0*(v__c0 + 1.0)*(v__c1 + 1.0)*(v__s6*v__c0 + v__s6*v__c1 + v__s3*v__c2 + v__s5*v__c3 + v__s5);
+    out[1] = v__s50*v__c0*v__c5 + v__s47*v__c0 + v__s49*v__c1*v__c4 + v__s46*v__c1 + v__s52*v__c10 + v__s54*v__c2 + v__s48*v__c4*v__c5 + v__s44*v__c4 + v__s45*v__c5 + v__s51*v__c7 + v__s53*v__c9 + v__s43;
+    out[2] = v__s95*v__c10 + v__c11*v__c5 + v__c11 + v__c12*v__c5 + v__c12 + v__c13*v__c4 + v__c13 + v__s95*v__c2 + v__s94*v__c3 + v__s91*v__c5 + v__s95*v__c7 + v__s95*v__c9 + v__s91;
+}
+/* _fkchart1_step0_x on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step0_x_shape[4] = {24, 3, 0, 248};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step0_x_numbers[] = {-1};
+void bonered_rows__fkchart1_step0_x(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step0_x(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], in[19][i * step[19]], in[20][i * step[20]], in[21][i * step[21]], in[22][i * step[22]], in[23][i * step[23]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for y (from lex basis of the one upper and two bottom chains). */
+BF_INLINE void _fkchart1_step1_y(double v_L, double v_t1, double v_t2, double v_x, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+{
+    const double v__k0 = (v_lAF*v_lAF);
+    const double v__k1 = (v_lOB*v_lOB);
+    const double v__k2 = -(v_lBM*v_lBM);
+    const double v__k3 = -(v_lOA*v_lOA);
+    const double v__k4 = 2.0*v_lOA;
+    const double v__k5 = 2.0*v_lOB;
+    const double v__k6 = v__k4 - v__k5;
+    const double v__k7 = v__k4 + v__k5;
+    const double v__s0 = v__k0;
+    const double v__s1 = v__k1;
+    const double v__s2 = v__k2;
+    const double v__s3 = v__k3;
+    const double v__s4 = v__k0 + v__k1 + v__k2 + v__k3;
+    const double v__s5 = v__k6;
+    const double v__s6 = -v__k7;
+    const double v__s7 = v__k7;
+    const double v__s8 = -v__k6;
+    const double v__c0 = 4.0*v_lOA*v_t1;
+    const double v__c1 = 4.0*v_lOB*v_t2;
+    const double v__c2 = (v_t2*v_t2);
+    const double v__c3 = (v_t1*v_t1);
+    const double v__c4 = v__s4*v__c3;
+    const double v__c5 = v__c3*v_x;
+    out[0] = 0.0;
+    out[1] = v__c0*v__c2 + v__c0 - v__c1*v__c3 - v__c1;
+    out[2] = v__c2*v__c4 + v__s8*v__c2*v__c5 + v__s4*v__c2 + v__s7*v__c2*v_x + v__c4 + v__s6*v__c5 + v__s4 + v__s5*v_x;
+}
+/* _fkchart1_step1_y on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step1_y_shape[4] = {25, 3, 1, 43};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step1_y_numbers[] = {0};
+void bonered_rows__fkchart1_step1_y(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step1_y(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], in[19][i * step[19]], in[20][i * step[20]], in[21][i * step[21]], in[22][i * step[22]], in[23][i * step[23]], in[24][i * step[24]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for z (from lex basis of the one upper and two bottom chains). */
+BF_INLINE void _fkchart1_step2_z(double v_L, double v_t1, double v_t2, double v_x, double v_y, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+{
+    const double v__k0 = (v_lAF*v_lAF);
+    const double v__k1 = v__k0*v_dy1;
+    const double v__k2 = (v_lOB*v_lOB);
+    const double v__k3 = v__k2*v_dy1;
+    const double v__k4 = v__k0*v_dy2;
+    const double v__k5 = v__k2*v_dy2;
+    const double v__k6 = v__k0*v_lDE;
+    const double v__k7 = v__k2*v_lDE;
+    const double v__k8 = (v_lBM*v_lBM);
+    const double v__k9 = -v__k8*v_dy1;
+    const double v__k10 = (v_lOA*v_lOA);
+    const double v__k11 = -v__k10*v_dy1;
+    const double v__k12 = -v__k8*v_dy2;
+    const double v__k13 = -v__k10*v_dy2;
+    const double v__k14 = -v__k8*v_lDE;
+    const double v__k15 = -v__k10*v_lDE;
+    const double v__k16 = 2.0*v_lOB;
+    const double v__k17 = v__k16*v_dy1;
+    const double v__k18 = -v__k17;
+    const double v__k19 = v__k16*v_dy2;
+    const double v__k20 = -v__k19;
+    const double v__k21 = v__k16*v_lDE;
+    const double v__k22 = -v__k21;
+    const double v__k23 = (v_lEC*v_lEC);
+    const double v__k24 = 2.0*v_lOA;
+    const double v__k25 = -v__k23*v__k24;
+    const double v__k26 = -v__k2*v__k24;
+    const double v__k27 = (v_dD*v_dD);
+    const double v__k28 = v__k16*v__k27;
+    const double v__k29 = (v_dy1*v_dy1);
+    const double v__k30 = v__k16*v__k29;
+    const double v__k31 = (v_dy2*v_dy2);
+    const double v__k32 = v__k16*v__k31;
+    const double v__k33 = v__k0*v__k16;
+    const double v__k34 = (v_lDE*v_lDE);
+    const double v__k35 = v__k16*v__k34;
+    const double v__k36 = v__k24*v_dy1;
+    const double v__k37 = v__k24*v_dy2;
+    const double v__k38 = v__k24*v_lDE;
+    const double v__k39 = v__k24*v__k27;
+    const double v__k40 = v__k24*v__k29;
+    const double v__k41 = v__k24*v__k31;
+    const double v__k42 = v__k24*v__k8;
+    const double v__k43 = v__k24*v__k34;
+    const double v__k44 = 4.0*v_lOB;
+    const double v__k45 = v__k44*v_dy1;
+    const double v__k46 = v__k45*v_dy2;
+    const double v__k47 = v__k45*v_lDE;
+    const double v__k48 = v_dy2*v_lDE;
+    const double v__k49 = v__k44*v__k48;
+    const double v__k50 = v__k44*v_lOA;
+    const double v__k51 = 4.0*v_lOA;
+    const double v__k52 = v__k51*v_dy1;
+    const double v__k53 = v__k52*v_dy2;
+    const double v__k54 = v__k52*v_lDE;
+    const double v__k55 = v__k48*v__k51;
+    const double v__k56 = v__k36 + v__k37 + v__k38;
+    const double v__k57 = v__k18 + v__k20 + v__k22 + v__k56;
+    const double v__k58 = v__k17 + v__k19 + v__k21 + v__k56;
+    const double v__s0 = v__k1;
+    const double v__s1 = v__k3;
+    const double v__s2 = v__k4;
+    const double v__s3 = v__k5;
+    const double v__s4 = v__k6;
+    const double v__s5 = v__k7;
+    const double v__s6 = v__k9;
+    const double v__s7 = v__k11;
+    const double v__s8 = v__k12;
+    const double v__s9 = v__k13;
+    const double v__s10 = v__k14;
+    const double v__s11 = v__k15;
+    const double v__s12 = v__k18;
+    const double v__s13 = v__k20;
+    const double v__s14 = v__k22;
+    const double v__s15 = v__k25;
+    const double v__s16 = v__k26;
+    const double v__s17 = -v__k28;
+    const double v__s18 = -v__k30;
+    const double v__s19 = -v__k32;
+    const double v__s20 = -v__k33;
+    const double v__s21 = -v__k35;
+    const double v__s22 = v__k36;
+    const double v__s23 = v__k37;
+    const double v__s24 = v__k38;
+    const double v__s25 = v__k39;
+    const double v__s26 = v__k40;
+    const double v__s27 = v__k41;
+    const double v__s28 = v__k42;
+    const double v__s29 = v__k43;
+    const double v__s30 = v__k16*v__k23;
+    const double v__s31 = v__k10*v__k16;
+    const double v__s32 = -v__k44*v_dD;
+    const double v__s33 = -v__k46;
+    const double v__s34 = -v__k47;
+    const double v__s35 = -v__k49;
+    const double v__s36 = -v__k50;
+    const double v__s37 = -v__k36;
+    const double v__s38 = -v__k37;
+    const double v__s39 = -v__k38;
+    const double v__s40 = v__k17;
+    const double v__s41 = v__k19;
+    const double v__s42 = v__k21;
+    const double v__s43 = v__k51*v_dD;
+    const double v__s44 = v__k53;
+    const double v__s45 = v__k54;
+    const double v__s46 = v__k55;
+    const double v__s47 = v__k50;
+    const double v__s48 = v__k1 + v__k11 + v__k12 + v__k13 + v__k14 + v__k15 + v__k3 + v__k4 + v__k5 + v__k6 + v__k7 + v__k9;
+    const double v__s49 = v__k57;
+    const double v__s50 = v__k25 + v__k26 + v__k39 + v__k40 + v__k41 + v__k42 + v__k43 + v__k53 + v__k54 + v__k55;
+    const double v__s51 = 2.0*v__k10*v_lOB + 2.0*v__k23*v_lOB - v__k28 - v__k30 - v__k32 - v__k33 - v__k35 - v__k46 - v__k47 - v__k49;
+    const double v__s52 = -v__k58;
+    const double v__s53 = v__k58;
+    const double v__s54 = -v__k57;
+    const double v__c0 = v_lOA*v_t1;
+    const double v__c1 = 2.0*v__c0;
+    const double v__c2 = 2.0*v_lOB*v_t2;
+    const double v__c3 = (v_t2*v_t2);
+    const double v__c4 = v__c1*v__c3;
+    const double v__c5 = (v_t1*v_t1);
+    const double v__c6 = v__c2*v__c5;
+    const double v__c7 = v__s50*v_t1;
+    const double v__c8 = v__s51*v_t2;
+    const double v__c9 = v__s32*v_L*v_t2;
+    const double v__c10 = v__s43*v_L*v_t1;
+    const double v__c11 = v__s36*v_x;
+    const double v__c12 = v__s47*v_x;
+    const double v__c13 = v__s48*v__c5;
+    const double v__c14 = v__c5*v_x;
+    const double v__c15 = (v_L*v_L);
+    out[0] = v__c1 - v__c2 + v__c4 - v__c6;
+    out[1] = 4.0*(v_L + v_dD)*(-v__c0*v__c3 - v__c0 + v_lOB*v__c5*v_t2 + v_lOB*v_t2);
+    out[2] = v__c1*v__c15 + v__c10*v__c3 + v__c10 + v__c11*v__c3*v_t1 + v__c11*v_t2 + v__c12*v__c5*v_t2 + v__c12*v_t1 + v__c13*v__c3 + v__c13 + v__s54*v__c14*v__c3 + v__s52*v__c14 - v__c15*v__c2 + v__c15*v__c4 - v__c15*v__c6 + v__c3*v__c7 + v__s48*v__c3 + v__s53*v__c3*v_x + v__c5*v__c8 + v__c5*v__c9 + v__c7 + v__c8 + v__c9 + v__s48 + v__s49*v_x;
+}
+/* _fkchart1_step2_z on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step2_z_shape[4] = {26, 3, 0, 201};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step2_z_numbers[] = {-1};
+void bonered_rows__fkchart1_step2_z(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step2_z(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], in[19][i * step[19]], in[20][i * step[20]], in[21][i * step[21]], in[22][i * step[22]], in[23][i * step[23]], in[24][i * step[24]], in[25][i * step[25]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major). */
+BF_INLINE void _fk_newton(double v_y, double v_x, double v_z, double v_L, double v_t1, double v_t2, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
+{
+    const double v__k0 = 2.0*v_dy1;
+    const double v__k1 = 2.0*v_dy2;
+    const double v__k2 = (v_lOA*v_lOA);
+    const double v__k3 = (v_lAF*v_lAF);
+    const double v__k4 = (v_lOB*v_lOB);
+    const double v__k5 = (v_lBM*v_lBM);
+    const double v__s0 = v__k0*v_dy2 + v__k0*v_lDE + v__k1*v_lDE + (v_dD*v_dD) + (v_dy1*v_dy1) + (v_dy2*v_dy2) + (v_lDE*v_lDE) - (v_lEC*v_lEC);
+    const double v__s1 = -v__k0 - v__k1 - 2.0*v_lDE;
+    const double v__s2 = v__k2;
+    const double v__s3 = -v__k3;
+    const double v__s4 = v__k2 - v__k3;
+    const double v__s5 = v__k4;
+    const double v__s6 = -v__k5;
+    const double v__s7 = v__k4 - v__k5;
+    const double v__c0 = 2.0*v_L;
+    const double v__c1 = 2.0*v_dD;
+    const double v__c2 = (v_x*v_x);
+    const double v__c3 = (v_y*v_y);
+    const double v__c4 = v__c2 + v__c3;
+    const double v__c5 = (v_t1*v_t1);
+    const double v__c6 = 2.0*v_x;
+    const double v__c7 = v_lOA*v__c6;
+    const double v__c8 = 4.0*v_lOA*v_t1;
+    const double v__c9 = (v_t2*v_t2);
+    const double v__c10 = v_lOB*v__c6;
+    const double v__c11 = 4.0*v_lOB*v_t2;
+    const double v__c12 = 2.0*v_y;
+    const double v__c13 = 2.0*v_lOA;
+    const double v__c14 = 2.0*v_lOB;
+    out[0] = (v_L*v_L) + v_dD*v__c0 - v__c0*v_z - v__c1*v_z + v__c4 + v__s0 + v__s1*v_y + (v_z*v_z);
+    out[1] = v__c2*v__c5 + v__c3*v__c5 + v__c4 + v__c5*v__c7 + v__s4*v__c5 - v__c7 - v__c8*v_y + v__s4;
+    out[2] = v__c10*v__c9 - v__c10 - v__c11*v_y + v__c2*v__c9 + v__c3*v__c9 + v__c4 + v__s7*v__c9 + v__s7;
+    out[3] = v__c12 + v__s1;
+    out[4] = v__c6;
+    out[5] = -v__c0 - v__c1 + 2.0*v_z;
+    out[6] = v__c12*v__c5 + v__c12 - v__c8;
+    out[7] = v__c13*v__c5 - v__c13 + v__c5*v__c6 + v__c6;
+    out[8] = 0.0;
+    out[9] = -v__c11 + v__c12*v__c9 + v__c12;
+    out[10] = v__c14*v__c9 - v__c14 + v__c6*v__c9 + v__c6;
+    out[11] = 0.0;
+}
+/* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fk_newton_shape[4] = {27, 12, 2, 103};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fk_newton_numbers[] = {8, 11};
+void bonered_rows__fk_newton(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[12];
+        _fk_newton(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], in[19][i * step[19]], in[20][i * step[20]], in[21][i * step[21]], in[22][i * step[22]], in[23][i * step[23]], in[24][i * step[24]], in[25][i * step[25]], in[26][i * step[26]], o);
+        for (int m = 0; m < 12; m++)
+            out[m][i] = o[m];
+    }
+}
+
+#endif
 #if !defined(BF_PART) || BF_PART == 1
 BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2a03fa48641e803a49c301662fca45a7695e3bd8f646bf00162a70b82b4541fa
+ * Derivation hash: 634988030b90fe1b7fe38b83517f7d49459299db26664e4352038ab94d143688
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2a03fa48641e803a49c301662fca45a7695e3bd8f646bf00162a70b82b4541fa";
+const char bonered_derivation_hash[] = "634988030b90fe1b7fe38b83517f7d49459299db26664e4352038ab94d143688";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -430,6 +430,794 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 }
 #endif
 
+
+#if !defined(BF_PART) || BF_PART == 2
+/* Coefficients (A, B, C) of the generator solved for g (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkstep0_g(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = 1.7320508075688772;
+    const double v__s0 = -2.0*v__k0;
+    const double v__s1 = 6.0*v__k0*v_ra;
+    const double v__c0 = 3.0*v_q1 + 3.0*v_q2 + 3.0*v_q3;
+    out[0] = v__c0;
+    out[1] = v__s0*v_q1 + v__s0*v_q2 + v__s0*v_q3 + 18.0*v_ra;
+    out[2] = -v__c0 + v__s1;
+}
+/* _fkstep0_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep0_g_shape[4] = {8, 3, 0, 19};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep0_g_numbers[] = {-1};
+void bonered_rows__fkstep0_g(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep0_g(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for v1 (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkstep1_v1(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_g, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = (v_ra*v_ra);
+    const double v__k1 = 9.0*v__k0;
+    const double v__k2 = (v_ra*v_ra*v_ra*v_ra);
+    const double v__k3 = 27.0*v__k2;
+    const double v__k4 = 3.0*v__k0;
+    const double v__k5 = 6.0*v__k0;
+    const double v__k6 = 54.0*v__k2;
+    const double v__k7 = 1.7320508075688772;
+    const double v__k8 = v__k7*v_ra;
+    const double v__k9 = (v_ra*v_ra*v_ra);
+    const double v__k10 = 27.0*v__k9;
+    const double v__k11 = 9.0*v__k7*v__k9;
+    const double v__k12 = 3.0*v__k8;
+    const double v__k13 = 2.0*v__k8;
+    const double v__k14 = v__k1*v__k7;
+    const double v__s0 = -v__k1;
+    const double v__s1 = -18.0*v__k0;
+    const double v__s2 = 81.0*v__k2;
+    const double v__s3 = -v__k3;
+    const double v__s4 = -v__k4;
+    const double v__s5 = v__k5;
+    const double v__s6 = v__k6;
+    const double v__s7 = v__k8;
+    const double v__s8 = -v__k8;
+    const double v__s9 = -v__k10;
+    const double v__s10 = -v__k11;
+    const double v__s11 = v__k1;
+    const double v__s12 = v__k11;
+    const double v__s13 = v__k10;
+    const double v__s14 = -v__k3*v__k7;
+    const double v__s15 = -v__k4*v__k7;
+    const double v__s16 = -v__k12;
+    const double v__s17 = -v__k13;
+    const double v__s18 = v__k13;
+    const double v__s19 = v__k12;
+    const double v__s20 = v__k5*v__k7;
+    const double v__s21 = v__k6*v__k7;
+    const double v__s22 = -v__k14;
+    const double v__s23 = v__k14;
+    const double v__c0 = (v_q1*v_q1*v_q1*v_q1);
+    const double v__c1 = (v_q3*v_q3*v_q3*v_q3);
+    const double v__c2 = 4.0*v__s1;
+    const double v__c3 = v_q1*v_q2;
+    const double v__c4 = v_q1*v_q3;
+    const double v__c5 = v_q2*v_q3;
+    const double v__c6 = (v_q1*v_q1);
+    const double v__c7 = 4.0*v__s0;
+    const double v__c8 = (v_q2*v_q2);
+    const double v__c9 = (v_q3*v_q3);
+    const double v__c10 = (v_q2*v_q2*v_q2);
+    const double v__c11 = 16.0*v_q1;
+    const double v__c12 = (v_q3*v_q3*v_q3);
+    const double v__c13 = (v_q1*v_q1*v_q1);
+    const double v__c14 = 16.0*v_q2;
+    const double v__c15 = 16.0*v_q3;
+    const double v__c16 = v__c8*v_q1;
+    const double v__c17 = 48.0*v_q3;
+    const double v__c18 = v__c6*v_q2;
+    const double v__c19 = 24.0*v__c6;
+    const double v__c20 = v__c8*v__c9;
+    const double v__c21 = v__s14*v_g;
+    const double v__c22 = v_g*v_q1;
+    const double v__c23 = v__s13*v_g;
+    const double v__c24 = v__s9*v_g;
+    const double v__c25 = v__s11*v__c9;
+    const double v__c26 = v__s15*v_g;
+    const double v__c27 = v__c13*v_q2;
+    const double v__c28 = v__c13*v_q3;
+    const double v__c29 = v__c12*v_q1;
+    const double v__c30 = v__s19*v_q2;
+    const double v__c31 = v__c12*v_g;
+    const double v__c32 = v__c10*v_q3;
+    const double v__c33 = v_ra*v_g;
+    const double v__c34 = 3.0*v__c33;
+    const double v__c35 = v__c18*v_q3;
+    const double v__c36 = v__s22*v_g;
+    const double v__c37 = v__s23*v__c9;
+    const double v__c38 = v__c6*v__c8;
+    const double v__c39 = v_ra*v__c22;
+    const double v__c40 = 6.0*v__c33;
+    const double v__c41 = 9.0*v__c33;
+    const double v__c42 = 9.0*v_q2;
+    out[0] = 0.0;
+    out[1] = 4.0*v__c0 + 4.0*v__c1 + v__c10*v__c11 + v__c10*v__c15 + v__c11*v__c12 + v__c12*v__c14 + v__c13*v__c14 + v__c13*v__c15 + v__c16*v__c17 + v__c17*v__c18 + v__c19*v__c8 + v__c19*v__c9 + v__c2*v__c3 + v__c2*v__c4 + v__c2*v__c5 + 24.0*v__c20 + 48.0*v__c3*v__c9 + v__c6*v__c7 + v__c7*v__c8 + v__c7*v__c9 + 4.0*v__s2 + 4.0*(v_q2*v_q2*v_q2*v_q2);
+    out[2] = -v__c0*v__c34 + v__s8*v__c0 + v__c1*v__c34 + v__s7*v__c1 + v__c10*v__c26 - 3.0*v__c10*v__c39 + v__s4*v__c10 + v__s8*v__c10*v_q1 + v__c12*v__c30 + v__s5*v__c12 + v__c13*v__c26 + v__s4*v__c13 + v__c16*v__c36 + v__s0*v__c16 + v__c18*v__c36 + v__s0*v__c18 + v__c20*v__c41 + v__s19*v__c20 + v__c21*v_q2 + v__c21*v_q3 + v__c22*v__c37 + v__s21*v__c22 + v__c23*v__c4 + v__c23*v__c6 + v__c24*v__c5 + v__c24*v__c8 + v__c25*v_q1 + v__c25*v_q2 - v__c27*v__c41 + v__s16*v__c27 - v__c28*v__c40 + v__s17*v__c28 + v__c29*v__c40 + v__s18*v__c29 + v__c30*v__c9*v_q1 + v_ra*v__c31*v__c42 + v__s20*v__c31 + v__c32*v__c34 + v__s7*v__c32 - v__c35*v__c41 + v__s16*v__c35 + v__c37*v_g*v_q2 - v__c38*v__c41 + v__s16*v__c38 + v__c39*v__c42*v__c9 + v__s12*v__c4 + v__s10*v__c5 + v__s12*v__c6 + v__s10*v__c8 + v__s3*v_q2 + v__s3*v_q3 + v__s6*v_q1;
+}
+/* _fkstep1_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep1_v1_shape[4] = {9, 3, 1, 232};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep1_v1_numbers[] = {0};
+void bonered_rows__fkstep1_v1(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep1_v1(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for v2 (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkstep2_v2(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_g, double v_v1, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = (v_ra*v_ra);
+    const double v__k1 = 9.0*v__k0;
+    const double v__k2 = 18.0*v__k0;
+    const double v__k3 = (v_ra*v_ra*v_ra*v_ra);
+    const double v__k4 = 81.0*v__k3;
+    const double v__k5 = (v_ra*v_ra*v_ra);
+    const double v__k6 = 18.0*v__k5;
+    const double v__k7 = 9.0*v__k5;
+    const double v__k8 = 1.7320508075688772;
+    const double v__k9 = 27.0*v__k3*v__k8;
+    const double v__k10 = v__k0*v__k8;
+    const double v__k11 = 3.0*v__k10;
+    const double v__k12 = v__k8*v_ra;
+    const double v__k13 = v__k6*v__k8;
+    const double v__k14 = 6.0*v__k10;
+    const double v__k15 = v__k7*v__k8;
+    const double v__k16 = 3.0*v__k12;
+    const double v__k17 = 6.0*v__k12;
+    const double v__s0 = -v__k1;
+    const double v__s1 = -v__k2;
+    const double v__s2 = v__k4;
+    const double v__s3 = -v__k6;
+    const double v__s4 = v__k7;
+    const double v__s5 = -v__k4;
+    const double v__s6 = -v__k9;
+    const double v__s7 = -v__k7;
+    const double v__s8 = -v__k11;
+    const double v__s9 = v__k11;
+    const double v__s10 = v__k1;
+    const double v__s11 = v__k6;
+    const double v__s12 = v__k9;
+    const double v__s13 = v__k12;
+    const double v__s14 = -v__k13;
+    const double v__s15 = -v__k14;
+    const double v__s16 = -2.0*v__k12;
+    const double v__s17 = v__k14;
+    const double v__s18 = v__k15;
+    const double v__s19 = v__k2;
+    const double v__s20 = -v__k15;
+    const double v__s21 = -5.0*v__k12;
+    const double v__s22 = -v__k16;
+    const double v__s23 = 4.0*v__k12;
+    const double v__s24 = v__k17;
+    const double v__s25 = v__k13;
+    const double v__s26 = -v__k17;
+    const double v__s27 = v__k16;
+    const double v__c0 = (v_q1*v_q1*v_q1*v_q1);
+    const double v__c1 = (v_q2*v_q2*v_q2*v_q2);
+    const double v__c2 = (v_q3*v_q3*v_q3*v_q3);
+    const double v__c3 = v_q1*v_q2;
+    const double v__c4 = 4.0*v__s1;
+    const double v__c5 = v__c4*v_q3;
+    const double v__c6 = (v_q1*v_q1);
+    const double v__c7 = 4.0*v__s0;
+    const double v__c8 = (v_q2*v_q2);
+    const double v__c9 = (v_q3*v_q3);
+    const double v__c10 = (v_q2*v_q2*v_q2);
+    const double v__c11 = 16.0*v_q1;
+    const double v__c12 = (v_q3*v_q3*v_q3);
+    const double v__c13 = (v_q1*v_q1*v_q1);
+    const double v__c14 = 16.0*v_q2;
+    const double v__c15 = 16.0*v_q3;
+    const double v__c16 = v__c3*v__c9;
+    const double v__c17 = v__c8*v_q3;
+    const double v__c18 = v__c17*v_q1;
+    const double v__c19 = v__c6*v_q3;
+    const double v__c20 = 24.0*v__c6;
+    const double v__c21 = v__c8*v__c9;
+    const double v__c22 = v_g*v_q2;
+    const double v__c23 = v_g*v_q3;
+    const double v__c24 = v__s7*v_q3;
+    const double v__c25 = v__s0*v_g;
+    const double v__c26 = v__s10*v_g;
+    const double v__c27 = v__s13*v_g;
+    const double v__c28 = v__c9*v_g;
+    const double v__c29 = v__s18*v_g;
+    const double v__c30 = v__c8*v_q1;
+    const double v__c31 = v__c9*v_q2;
+    const double v__c32 = v__c9*v_q1;
+    const double v__c33 = v__c6*v_q2;
+    const double v__c34 = v_ra*v_q2;
+    const double v__c35 = v_ra*v_q1;
+    const double v__c36 = 5.0*v__c10;
+    const double v__c37 = v_ra*v_q3;
+    const double v__c38 = v__c27*v_q2;
+    const double v__c39 = v__s21*v__c10;
+    const double v__c40 = v_g*v_q1;
+    const double v__c41 = 3.0*v_ra;
+    const double v__c42 = 6.0*v_ra;
+    const double v__c43 = v__c6*v__c8;
+    const double v__c44 = v__s22*v_g;
+    out[0] = 0.0;
+    out[1] = 4.0*v__c0 + 4.0*v__c1 + v__c10*v__c11 + v__c10*v__c15 + v__c11*v__c12 + v__c12*v__c14 + v__c13*v__c14 + v__c13*v__c15 + 48.0*v__c16 + 48.0*v__c18 + 48.0*v__c19*v_q2 + 4.0*v__c2 + v__c20*v__c8 + v__c20*v__c9 + 24.0*v__c21 + v__c3*v__c4 + v__c5*v_q1 + v__c5*v_q2 + v__c6*v__c7 + v__c7*v__c8 + v__c7*v__c9 + 4.0*v__s2;
+    out[2] = v__c0*v__c27 + v_ra*v__c0 + v__s16*v__c1*v_g - 2.0*v_ra*v__c1 + v__c10*v__c25 + v__s8*v__c10 + v__c12*v__c34 + 4.0*v__c12*v__c35 + v__c12*v__c38 + v__s23*v__c12*v__c40 + v__s23*v__c13*v__c23 + v__c13*v__c26 + v__c13*v__c34 + 4.0*v__c13*v__c37 + v__c13*v__c38 + v__s9*v__c13 + v__c16*v__c41 + v__s1*v__c17*v_g + v__s15*v__c17 - v__c18*v__c42 + v__s26*v__c18*v_g + v__s27*v__c19*v__c22 + 3.0*v__c19*v__c34 + v__s17*v__c19 + v__s19*v__c19*v_g + v__c2*v__c27 + v_ra*v__c2 - v__c21*v__c41 + v__c21*v__c44 + v__s2*v__c22 + v__s20*v__c22*v_q3 + v__c23*v__c39 + v__s20*v__c23*v_q1 + v__s5*v__c23 + v__c24*v_q1 + v__c24*v_q2 + v__c25*v__c30 + v__c25*v__c31 + v__c26*v__c32 + v__c26*v__c33 + v__s27*v__c28*v__c3 + v__s24*v__c28*v__c6 + v__s14*v__c28 + v__c29*v__c6 + v__c29*v__c8 + v__s11*v__c3 + v__s25*v__c3*v_g + v__s8*v__c30 + v__s8*v__c31 + v__s9*v__c32 + v__s9*v__c33 - v__c35*v__c36 - v__c36*v__c37 + v__c39*v__c40 - v__c41*v__c43 + v__c42*v__c6*v__c9 + v__c43*v__c44 + v__s4*v__c6 + v__s4*v__c8 + v__s3*v__c9 + v__s12*v_q2 + v__s6*v_q3;
+}
+/* _fkstep2_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep2_v2_shape[4] = {10, 3, 1, 266};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep2_v2_numbers[] = {0};
+void bonered_rows__fkstep2_v2(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep2_v2(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for v2 (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkchart1_step0_v2(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = (v_ra*v_ra);
+    const double v__k1 = 9.0*v__k0;
+    const double v__k2 = (v_ra*v_ra*v_ra*v_ra);
+    const double v__k3 = 243.0*(v_ra*v_ra*v_ra*v_ra*v_ra);
+    const double v__k4 = (v_ra*v_ra*v_ra);
+    const double v__k5 = 81.0*v__k4;
+    const double v__k6 = 54.0*v__k4;
+    const double v__k7 = 27.0*v__k4;
+    const double v__k8 = 1.7320508075688772;
+    const double v__k9 = 27.0*v__k2*v__k8;
+    const double v__k10 = v__k0*v__k8;
+    const double v__k11 = 3.0*v__k10;
+    const double v__k12 = v__k1*v__k8;
+    const double v__k13 = 6.0*v__k10;
+    const double v__s0 = -v__k1;
+    const double v__s1 = -18.0*v__k0;
+    const double v__s2 = 81.0*v__k2;
+    const double v__s3 = -v__k3;
+    const double v__s4 = -36.0*v__k4;
+    const double v__s5 = -9.0*v__k4;
+    const double v__s6 = 45.0*v__k4;
+    const double v__s7 = v__k3;
+    const double v__s8 = -v__k5;
+    const double v__s9 = -v__k6;
+    const double v__s10 = -v__k7;
+    const double v__s11 = -v__k9;
+    const double v__s12 = -v__k11;
+    const double v__s13 = v__k11;
+    const double v__s14 = v__k7;
+    const double v__s15 = v__k9;
+    const double v__s16 = v__k6;
+    const double v__s17 = v__k5;
+    const double v__s18 = -v__k12;
+    const double v__s19 = -v__k13;
+    const double v__s20 = v__k13;
+    const double v__s21 = v__k12;
+    const double v__c0 = (v_q1*v_q1*v_q1*v_q1);
+    const double v__c1 = (v_q2*v_q2*v_q2*v_q2);
+    const double v__c2 = (v_q3*v_q3*v_q3*v_q3);
+    const double v__c3 = v__s1*v_q1;
+    const double v__c4 = v_q2*v_q3;
+    const double v__c5 = (v_q1*v_q1);
+    const double v__c6 = (v_q2*v_q2);
+    const double v__c7 = (v_q3*v_q3);
+    const double v__c8 = (v_q2*v_q2*v_q2);
+    const double v__c9 = 4.0*v_q1;
+    const double v__c10 = (v_q3*v_q3*v_q3);
+    const double v__c11 = (v_q1*v_q1*v_q1);
+    const double v__c12 = 4.0*v_q2;
+    const double v__c13 = 4.0*v_q3;
+    const double v__c14 = v__c7*v_q2;
+    const double v__c15 = v__c14*v_q1;
+    const double v__c16 = v_q1*v_q3;
+    const double v__c17 = 12.0*v__c5;
+    const double v__c18 = 6.0*v__c5;
+    const double v__c19 = v__c6*v__c7;
+    const double v__c20 = 2.0*v_ra;
+    const double v__c21 = 4.0*v_ra;
+    const double v__c22 = v__c6*v_q3;
+    const double v__c23 = v__c10*v_q2;
+    const double v__c24 = v_ra*v_q1;
+    const double v__c25 = 14.0*v__c1;
+    const double v__c26 = v_ra*v__c12;
+    const double v__c27 = v_ra*v_q3;
+    const double v__c28 = v__s21*v__c5;
+    const double v__c29 = v_ra*v__c5;
+    const double v__c30 = 16.0*v__c8;
+    const double v__c31 = v__c21*v__c6;
+    const double v__c32 = v_ra*v__c7;
+    out[0] = 2.0*(v_q1 + v_q2 + v_q3)*(v__c0 + v__c1 + v__c10*v__c12 + v__c10*v__c9 + v__c11*v__c12 + v__c11*v__c13 + v__c13*v__c8 + 12.0*v__c15 + 12.0*v__c16*v__c6 + v__c17*v__c4 + v__c18*v__c6 + v__c18*v__c7 + 6.0*v__c19 + v__c2 + v__c3*v_q2 + v__c3*v_q3 + v__s1*v__c4 + v__s0*v__c5 + v__s0*v__c6 + v__s0*v__c7 + v__c8*v__c9 + v__s2);
+    out[1] = v__c0*v__c26 + 10.0*v__c0*v__c27 + v__s13*v__c0 + 20.0*v__c10*v__c29 - v__c10*v__c31 + v__s19*v__c10*v_q1 + v__s4*v__c10 - v__c11*v__c31 + 20.0*v__c11*v__c32 + 16.0*v_ra*v__c11*v__c4 + v__s20*v__c11*v_q3 + v__s21*v__c11*v_q2 + v__s5*v__c11 + 24.0*v__c14*v__c29 + v__s10*v__c14 + v__s18*v__c15 - 32.0*v_ra*v__c16*v__c8 + v__s11*v__c16 - v_ra*v__c17*v__c22 - 12.0*v__c19*v__c24 + v__s18*v__c19 + 10.0*v__c2*v__c24 + v__c2*v__c26 + v__s12*v__c2 + v__c20*(v_q1*v_q1*v_q1*v_q1*v_q1) + v__c20*(v_q3*v_q3*v_q3*v_q3*v_q3) - v__c21*(v_q2*v_q2*v_q2*v_q2*v_q2) + v__s16*v__c22 + 16.0*v__c23*v__c24 + v__s18*v__c23 - v__c24*v__c25 - v__c25*v__c27 + v__c28*v__c4 + v__c28*v__c6 - v__c29*v__c30 - v__c30*v__c32 + v__s15*v__c4 + v__s11*v__c5 + v__s14*v__c5*v_q2 + v__s9*v__c5*v_q3 + v__s15*v__c6 + v__s17*v__c6*v_q1 + v__s8*v__c7*v_q1 + v__s12*v__c8*v_q3 + v__s13*v__c8*v_q1 + v__s6*v__c8 + v__s3*v_q2 + v__s7*v_q3;
+    out[2] = 0.0;
+}
+/* _fkchart1_step0_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step0_v2_shape[4] = {8, 3, 1, 230};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step0_v2_numbers[] = {2};
+void bonered_rows__fkchart1_step0_v2(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step0_v2(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for v1 (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkchart1_step1_v1(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_v2, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = (v_ra*v_ra);
+    const double v__k1 = 1.7320508075688772;
+    const double v__k2 = v__k0*v__k1;
+    const double v__k3 = 9.0*v__k2;
+    const double v__k4 = 3.0*v__k1;
+    const double v__k5 = 2.0*v__k1;
+    const double v__k6 = 18.0*v__k2;
+    const double v__s0 = -27.0*v__k0;
+    const double v__s1 = 54.0*v__k0;
+    const double v__s2 = v__k1;
+    const double v__s3 = -v__k1;
+    const double v__s4 = -v__k3;
+    const double v__s5 = -v__k4;
+    const double v__s6 = -v__k5;
+    const double v__s7 = v__k5;
+    const double v__s8 = v__k4;
+    const double v__s9 = v__k3;
+    const double v__s10 = -v__k6;
+    const double v__s11 = v__k6;
+    const double v__c0 = (v_q1*v_q1*v_q1*v_q1);
+    const double v__c1 = (v_q3*v_q3*v_q3*v_q3);
+    const double v__c2 = v_q2*v_q3;
+    const double v__c3 = (v_q2*v_q2);
+    const double v__c4 = (v_q3*v_q3);
+    const double v__c5 = (v_q2*v_q2*v_q2);
+    const double v__c6 = 4.0*v_q1;
+    const double v__c7 = (v_q3*v_q3*v_q3);
+    const double v__c8 = (v_q1*v_q1*v_q1);
+    const double v__c9 = 2.0*v_q2;
+    const double v__c10 = 4.0*v_q3;
+    const double v__c11 = 6.0*v__c4;
+    const double v__c12 = v_q1*v_q2;
+    const double v__c13 = v_q1*v_q3;
+    const double v__c14 = (v_q1*v_q1);
+    const double v__c15 = 3.0*v__c3;
+    const double v__c16 = 6.0*v_ra;
+    const double v__c17 = v__s6*v_q1;
+    const double v__c18 = v__s7*v_q3;
+    out[0] = 0.0;
+    out[1] = v__c0 + v__c1 + v__c10*v__c5 + v__c10*v__c8 - v__c11*v__c12 + v__c11*v__c14 - 6.0*v__c13*v__c3 - v__c14*v__c15 - 6.0*v__c14*v__c2 - v__c15*v__c4 + v__s1*v__c2 + v__s0*v__c3 + v__s0*v__c4 + v__c5*v__c6 + v__c6*v__c7 - v__c7*v__c9 - v__c8*v__c9 + 4.0*(v_q2*v_q2*v_q2*v_q2);
+    out[2] = v_v2*(v__s2*v__c0 + v__s3*v__c1 + v__s11*v__c12 + v__s10*v__c13 + v__s5*v__c14*v__c3 - v__c16*v__c5 - v__c16*v__c7 - v__c16*v__c8 + v__c17*v__c5 + v__c17*v__c7 + v__c18*v__c5 + v__c18*v__c8 + 18.0*v_ra*v__c2*v_q1 + v__s8*v__c3*v__c4 + v__s4*v__c3 + v__s9*v__c4);
+}
+/* _fkchart1_step1_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step1_v1_shape[4] = {9, 3, 1, 107};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step1_v1_numbers[] = {0};
+void bonered_rows__fkchart1_step1_v1(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step1_v1(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for g (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkchart1_step2_g(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_v2, double v_v1, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = (v_ra*v_ra);
+    const double v__k1 = 1.7320508075688772;
+    const double v__k2 = v__k1*v_ra;
+    const double v__k3 = (v_ra*v_ra*v_ra);
+    const double v__k4 = 324.0*v__k3;
+    const double v__k5 = v__k1*v__k3;
+    const double v__k6 = v__k0*v__k1;
+    const double v__k7 = 72.0*v__k6;
+    const double v__k8 = 12.0*v__k1;
+    const double v__k9 = 6.0*v__k2;
+    const double v__k10 = 24.0*v__k1;
+    const double v__k11 = 36.0*v__k6;
+    const double v__s0 = -27.0*v__k0;
+    const double v__s1 = 54.0*v__k0;
+    const double v__s2 = v__k2;
+    const double v__s3 = -v__k4;
+    const double v__s4 = -27.0*v__k5;
+    const double v__s5 = -8.0*v__k1;
+    const double v__s6 = 4.0*v__k2;
+    const double v__s7 = 4.0*v__k1;
+    const double v__s8 = v__k4;
+    const double v__s9 = -v__k7;
+    const double v__s10 = -20.0*v__k1;
+    const double v__s11 = -v__k8;
+    const double v__s12 = -3.0*v__k2;
+    const double v__s13 = -2.0*v__k2;
+    const double v__s14 = v__k9;
+    const double v__s15 = 16.0*v__k1;
+    const double v__s16 = v__k10;
+    const double v__s17 = v__k11;
+    const double v__s18 = 54.0*v__k5;
+    const double v__s19 = -v__k11;
+    const double v__s20 = -v__k10;
+    const double v__s21 = -v__k9;
+    const double v__s22 = v__k8;
+    const double v__s23 = v__k7;
+    const double v__c0 = (v_q1*v_q1*v_q1*v_q1);
+    const double v__c1 = (v_q3*v_q3*v_q3*v_q3);
+    const double v__c2 = v_q2*v_q3;
+    const double v__c3 = (v_q2*v_q2*v_q2*v_q2);
+    const double v__c4 = (v_q2*v_q2);
+    const double v__c5 = (v_q3*v_q3);
+    const double v__c6 = (v_q2*v_q2*v_q2);
+    const double v__c7 = 4.0*v_q1;
+    const double v__c8 = (v_q3*v_q3*v_q3);
+    const double v__c9 = (v_q1*v_q1*v_q1);
+    const double v__c10 = 2.0*v_q2;
+    const double v__c11 = 4.0*v_q3;
+    const double v__c12 = 6.0*v_q1;
+    const double v__c13 = v__c5*v_q2;
+    const double v__c14 = v__c4*v_q3;
+    const double v__c15 = (v_q1*v_q1);
+    const double v__c16 = v__c15*v__c2;
+    const double v__c17 = 3.0*v__c4;
+    const double v__c18 = v__c15*v__c5;
+    const double v__c19 = v_q2*v_v2;
+    const double v__c20 = v_q3*v_v2;
+    const double v__c21 = v__c20*v_q1;
+    const double v__c22 = v__c19*v_q1;
+    const double v__c23 = v__s13*v_q2;
+    const double v__c24 = v__s17*v_v2;
+    const double v__c25 = v__s6*v_q1;
+    const double v__c26 = v__s6*v_q3;
+    const double v__c27 = v__s7*v_v2;
+    const double v__c28 = v__c5*v_v2;
+    const double v__c29 = 36.0*v_ra;
+    const double v__c30 = v__c29*v_v2;
+    const double v__c31 = v__s10*v__c6;
+    const double v__c32 = v_q1*v_v2;
+    const double v__c33 = v__s21*v_q1;
+    const double v__c34 = v__s7*v__c19;
+    const double v__c35 = v__s12*v__c4;
+    const double v__c36 = v__c19*v__c29;
+    const double v__c37 = 72.0*v_ra*v__c20;
+    const double v__c38 = v__s11*v__c4;
+    out[0] = 0.0;
+    out[1] = 3.0*v_ra*(v__c0 + v__c1 - v__c10*v__c8 - v__c10*v__c9 + v__c11*v__c6 + v__c11*v__c9 - v__c12*v__c13 - v__c12*v__c14 - v__c15*v__c17 - 6.0*v__c16 - v__c17*v__c5 + 6.0*v__c18 + v__s1*v__c2 + 4.0*v__c3 + v__s0*v__c4 + v__s0*v__c5 + v__c6*v__c7 + v__c7*v__c8);
+    out[2] = v__c0*v__c27 + v__s2*v__c0 + v__c1*v__c27 + v__s2*v__c1 + v__c13*v__c33 + v__c14*v__c33 + v__c15*v__c24 + v__c15*v__c35 - v__c15*v__c36 - v__c15*v__c37 + v__c15*v__c38*v_v2 + v__s21*v__c16 + v__s22*v__c16*v_v2 + v__s14*v__c18 + v__s16*v__c18*v_v2 + v__s3*v__c19 + v__s18*v__c2 + v__s19*v__c2*v_v2 + v__c20*v__c31 + v__s15*v__c20*v__c9 + v__s8*v__c20 + v__s20*v__c21*v__c4 + v__s19*v__c21 + v__s22*v__c22*v__c5 + v__s23*v__c22 + v__c23*v__c8 + v__c23*v__c9 + v__c24*v__c4 + v__c25*v__c6 + v__c25*v__c8 + v__c26*v__c6 + v__c26*v__c9 - v__c28*v__c29*v_q1 + v__c28*v__c38 + v__s9*v__c28 + v__s5*v__c3*v_v2 + v__s6*v__c3 + v__c30*v__c4*v_q1 + v__c30*v__c6 - v__c30*v__c9 + v__c31*v__c32 + v__s15*v__c32*v__c8 + v__c34*v__c8 + v__c34*v__c9 + v__c35*v__c5 + v__c36*v__c5 + v__c37*v__c4 + v__s4*v__c4 + v__s4*v__c5;
+}
+/* _fkchart1_step2_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step2_g_shape[4] = {10, 3, 1, 219};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step2_g_numbers[] = {0};
+void bonered_rows__fkchart1_step2_g(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step2_g(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for v1 (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkchart2_step0_v1(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = (v_ra*v_ra);
+    const double v__k1 = 9.0*v__k0;
+    const double v__k2 = 18.0*v__k0;
+    const double v__k3 = (v_ra*v_ra*v_ra*v_ra);
+    const double v__k4 = 54.0*v__k3;
+    const double v__k5 = 27.0*v__k3;
+    const double v__k6 = 1.7320508075688772;
+    const double v__k7 = v__k6*(v_ra*v_ra*v_ra*v_ra*v_ra);
+    const double v__k8 = v__k6*(v_ra*v_ra*v_ra);
+    const double v__k9 = 9.0*v__k8;
+    const double v__k10 = v__k6*v_ra;
+    const double v__k11 = 2.0*v__k10;
+    const double v__k12 = 45.0*v__k8;
+    const double v__k13 = 36.0*v__k8;
+    const double v__k14 = 12.0*v__k10;
+    const double v__k15 = 8.0*v__k10;
+    const double v__k16 = 6.0*v__k10;
+    const double v__k17 = 4.0*v__k10;
+    const double v__k18 = 16.0*v__k10;
+    const double v__s0 = -v__k1;
+    const double v__s1 = -v__k2;
+    const double v__s2 = 81.0*v__k3;
+    const double v__s3 = -v__k4;
+    const double v__s4 = -6.0*v__k0;
+    const double v__s5 = 3.0*v__k0;
+    const double v__s6 = v__k5;
+    const double v__s7 = -162.0*v__k7;
+    const double v__s8 = -v__k5;
+    const double v__s9 = -18.0*v__k8;
+    const double v__s10 = -15.0*v__k0;
+    const double v__s11 = -v__k9;
+    const double v__s12 = -v__k11;
+    const double v__s13 = v__k11;
+    const double v__s14 = 12.0*v__k0;
+    const double v__s15 = v__k2;
+    const double v__s16 = 27.0*v__k8;
+    const double v__s17 = v__k4;
+    const double v__s18 = 81.0*v__k7;
+    const double v__s19 = -v__k12;
+    const double v__s20 = -v__k13;
+    const double v__s21 = -v__k14;
+    const double v__s22 = -v__k15;
+    const double v__s23 = -v__k16;
+    const double v__s24 = -v__k17;
+    const double v__s25 = v__k17;
+    const double v__s26 = v__k16;
+    const double v__s27 = v__k15;
+    const double v__s28 = v__k1;
+    const double v__s29 = v__k9;
+    const double v__s30 = v__k14;
+    const double v__s31 = v__k13;
+    const double v__s32 = v__k12;
+    const double v__s33 = -v__k18;
+    const double v__s34 = v__k18;
+    const double v__c0 = (v_q1*v_q1*v_q1*v_q1);
+    const double v__c1 = (v_q2*v_q2*v_q2*v_q2);
+    const double v__c2 = (v_q3*v_q3*v_q3*v_q3);
+    const double v__c3 = v__s1*v_q1;
+    const double v__c4 = v__c3*v_q3;
+    const double v__c5 = v_q2*v_q3;
+    const double v__c6 = (v_q1*v_q1);
+    const double v__c7 = v__s0*v__c6;
+    const double v__c8 = (v_q2*v_q2);
+    const double v__c9 = v__s0*v__c8;
+    const double v__c10 = (v_q3*v_q3);
+    const double v__c11 = (v_q2*v_q2*v_q2);
+    const double v__c12 = 4.0*v_q1;
+    const double v__c13 = (v_q3*v_q3*v_q3);
+    const double v__c14 = (v_q1*v_q1*v_q1);
+    const double v__c15 = 4.0*v_q2;
+    const double v__c16 = 4.0*v_q3;
+    const double v__c17 = v__c10*v_q1;
+    const double v__c18 = v__c17*v_q2;
+    const double v__c19 = v__c8*v_q3;
+    const double v__c20 = v__c5*v__c6;
+    const double v__c21 = 6.0*v__c6;
+    const double v__c22 = v__c10*v__c8;
+    const double v__c23 = v__s10*v__c11;
+    const double v__c24 = v__c13*v_q1;
+    const double v__c25 = v__s5*v_q2;
+    out[0] = 2.0*(v_q1 + v_q2 + v_q3)*(v__c0 + v__c1 + v__c10*v__c21 + v__s0*v__c10 + v__c11*v__c12 + v__c11*v__c16 + v__c12*v__c13 + v__c13*v__c15 + v__c14*v__c15 + v__c14*v__c16 + 12.0*v__c18 + 12.0*v__c19*v_q1 + v__c2 + 12.0*v__c20 + v__c21*v__c8 + 6.0*v__c22 + v__c3*v_q2 + v__c4 + v__s1*v__c5 + v__c7 + v__c9 + v__s2);
+    out[1] = v__s22*v__c0*v_q2 + v__s23*v__c0*v_q3 + v__s5*v__c0 + v__s12*v__c1*v_q1 + v__s13*v__c1*v_q3 + v__s4*v__c1 + v__s27*v__c10*v__c11 + v__s24*v__c10*v__c14 + v__s15*v__c10*v__c6 + v__c10*v__c9 + v__s19*v__c10*v_q2 + v__s3*v__c10 + v__s22*v__c11*v__c6 + v__s11*v__c11 + v__c13*v__c25 + v__s25*v__c13*v__c6 + v__s30*v__c13*v__c8 + v__s9*v__c13 + v__c14*v__c25 + v__s33*v__c14*v__c5 + v__s21*v__c14*v__c8 + v__s14*v__c14*v_q3 + v__s16*v__c14 + v__s11*v__c17 + v__s28*v__c18 + v__s21*v__c19*v__c6 + v__s20*v__c19 + v__s26*v__c2*v_q1 + v__s27*v__c2*v_q2 + v__s5*v__c2 + v__s28*v__c20 + v__s30*v__c22*v_q1 + v__c23*v_q1 + v__c23*v_q3 + v__s14*v__c24 + v__s34*v__c24*v_q2 + v__c4*v__c8 + v__s8*v__c5 + v__s31*v__c6*v_q3 + v__s32*v__c6*v_q2 + v__s6*v__c6 + v__c7*v__c8 + v__s29*v__c8*v_q1 + v__s6*v__c8 + v__s12*(v_q1*v_q1*v_q1*v_q1*v_q1) + v__s13*(v_q3*v_q3*v_q3*v_q3*v_q3) + v__s17*v_q1*v_q2 + v__s18*v_q2 + v__s18*v_q3 + v__s7*v_q1 + v__s8*v_q1*v_q3;
+    out[2] = 0.0;
+}
+/* _fkchart2_step0_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart2_step0_v1_shape[4] = {8, 3, 1, 242};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step0_v1_numbers[] = {2};
+void bonered_rows__fkchart2_step0_v1(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart2_step0_v1(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for v2 (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkchart2_step1_v2(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_v1, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = (v_ra*v_ra);
+    const double v__k1 = 12.0*v__k0;
+    const double v__k2 = 1.7320508075688772;
+    const double v__k3 = v__k0*v__k2;
+    const double v__k4 = 9.0*v__k3;
+    const double v__k5 = 3.0*v__k2;
+    const double v__k6 = 2.0*v__k2;
+    const double v__k7 = 18.0*v__k3;
+    const double v__s0 = -v__k1;
+    const double v__s1 = -3.0*v__k0;
+    const double v__s2 = -6.0*v__k0;
+    const double v__s3 = v__k1;
+    const double v__s4 = v__k2;
+    const double v__s5 = -v__k2;
+    const double v__s6 = -v__k4;
+    const double v__s7 = -v__k5;
+    const double v__s8 = -v__k6;
+    const double v__s9 = v__k6;
+    const double v__s10 = v__k5;
+    const double v__s11 = v__k4;
+    const double v__s12 = -v__k7;
+    const double v__s13 = v__k7;
+    const double v__c0 = (v_q1*v_q1*v_q1*v_q1);
+    const double v__c1 = (v_q3*v_q3*v_q3*v_q3);
+    const double v__c2 = v_q1*v_q2;
+    const double v__c3 = 3.0*v__s3;
+    const double v__c4 = v_q1*v_q3;
+    const double v__c5 = (v_q1*v_q1);
+    const double v__c6 = 3.0*v__c5;
+    const double v__c7 = (v_q2*v_q2);
+    const double v__c8 = 3.0*v__s1;
+    const double v__c9 = (v_q3*v_q3);
+    const double v__c10 = (v_q1*v_q1*v_q1);
+    const double v__c11 = 6.0*v_q2;
+    const double v__c12 = (v_q3*v_q3*v_q3);
+    const double v__c13 = 6.0*v__c9;
+    const double v__c14 = v__c7*v__c9;
+    const double v__c15 = 6.0*v_ra;
+    const double v__c16 = (v_q2*v_q2*v_q2);
+    const double v__c17 = v__s8*v_q1;
+    const double v__c18 = v__s9*v_q3;
+    out[0] = 0.0;
+    out[1] = 3.0*v__c0 + 3.0*v__c1 + v__c10*v__c11 + v__c11*v__c12 - v__c11*v__c5*v_q3 - v__c13*v__c2 - v__c13*v__c5 + 3.0*v__c14 + v__c2*v__c3 + v__c3*v__c4 - 6.0*v__c4*v__c7 + v__c6*v__c7 + v__s0*v__c6 + v__c7*v__c8 + v__c8*v__c9 + 3.0*v__s2*v_q2*v_q3;
+    out[2] = v_v1*(v__s4*v__c0 + v__s5*v__c1 + v__c10*v__c15 + v__c10*v__c18 + v__c12*v__c15 + v__c12*v__c17 + v__s10*v__c14 + v__c15*v__c16 + v__c16*v__c17 + v__c16*v__c18 + v__s13*v__c2 + v__s12*v__c4 - 18.0*v_ra*v__c4*v_q2 + v__s7*v__c5*v__c7 + v__s6*v__c7 + v__s11*v__c9);
+}
+/* _fkchart2_step1_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart2_step1_v2_shape[4] = {9, 3, 1, 108};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step1_v2_numbers[] = {0};
+void bonered_rows__fkchart2_step1_v2(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart2_step1_v2(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for g (from lex basis of the planar 3-PRP mechanism). */
+BF_INLINE void _fkchart2_step2_g(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_v1, double v_v2, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = (v_ra*v_ra);
+    const double v__k1 = 12.0*v__k0;
+    const double v__k2 = 1.7320508075688772;
+    const double v__k3 = v__k2*v_ra;
+    const double v__k4 = 36.0*v__k0;
+    const double v__k5 = v__k2*(v_ra*v_ra*v_ra);
+    const double v__k6 = 12.0*v__k5;
+    const double v__k7 = 2.0*v__k3;
+    const double v__k8 = 12.0*v__k3;
+    const double v__s0 = -v__k1;
+    const double v__s1 = -3.0*v__k0;
+    const double v__s2 = -6.0*v__k0;
+    const double v__s3 = v__k1;
+    const double v__s4 = v__k3;
+    const double v__s5 = -v__k4;
+    const double v__s6 = -v__k6;
+    const double v__s7 = -3.0*v__k5;
+    const double v__s8 = v__k4;
+    const double v__s9 = -72.0*v__k5;
+    const double v__s10 = -8.0*v__k3;
+    const double v__s11 = -6.0*v__k5;
+    const double v__s12 = -v__k7;
+    const double v__s13 = v__k7;
+    const double v__s14 = 4.0*v__k3;
+    const double v__s15 = v__k6;
+    const double v__s16 = 36.0*v__k5;
+    const double v__s17 = -v__k8;
+    const double v__s18 = v__k8;
+    const double v__c0 = (v_q1*v_q1*v_q1*v_q1);
+    const double v__c1 = (v_q3*v_q3*v_q3*v_q3);
+    const double v__c2 = v_q2*v_q3;
+    const double v__c3 = v__s3*v_q1;
+    const double v__c4 = (v_q1*v_q1);
+    const double v__c5 = (v_q2*v_q2);
+    const double v__c6 = (v_q3*v_q3);
+    const double v__c7 = (v_q1*v_q1*v_q1);
+    const double v__c8 = 2.0*v_q2;
+    const double v__c9 = (v_q3*v_q3*v_q3);
+    const double v__c10 = v__c4*v__c5;
+    const double v__c11 = v__c5*v__c6;
+    const double v__c12 = v__c6*v_q1;
+    const double v__c13 = v__c5*v_q1*v_q3;
+    const double v__c14 = v__c4*v__c6;
+    const double v__c15 = v__s15*v_q1;
+    const double v__c16 = v__s16*v_v1;
+    const double v__c17 = v_q1*v_v1;
+    const double v__c18 = 4.0*v_v1;
+    const double v__c19 = v__c9*v_v1;
+    const double v__c20 = v__s13*v_q2;
+    const double v__c21 = v__s14*v_v1;
+    const double v__c22 = (v_q2*v_q2*v_q2);
+    const double v__c23 = v__c5*v_v1;
+    const double v__c24 = v__c4*v_v1;
+    const double v__c25 = v__c18*v__c22;
+    const double v__c26 = 12.0*v_v1;
+    const double v__c27 = 12.0*v_q2;
+    const double v__c28 = v__s17*v__c6;
+    out[0] = 0.0;
+    out[1] = 3.0*v_ra*(v__c0 + v__c1 + v__c10 + v__c11 - v__c12*v__c8 - 2.0*v__c13 - 2.0*v__c14 + v__s2*v__c2 + v__c3*v_q2 + v__c3*v_q3 - v__c4*v__c8*v_q3 + v__s0*v__c4 + v__s1*v__c5 + v__s1*v__c6 + v__c7*v__c8 + v__c8*v__c9);
+    out[2] = -v__c0*v__c18 + v__s4*v__c0 + v__c1*v__c18 + v__s4*v__c1 - v__c10*v__c26 + v__s4*v__c10 + v__c11*v__c26 + v__s4*v__c11 + v__s12*v__c12*v_q2 + v__s12*v__c13 + v__s12*v__c14 + v__c15*v_q2 + v__c15*v_q3 + v__c16*v_q2 + v__c16*v_q3 + v__c17*v__c27*v__c6 + v__c17*v__c28 + v__s8*v__c17*v_q3 + v__s9*v__c17 + v__c19*v__c27 + v__s10*v__c19 + 8.0*v__c19*v_q1 - 12.0*v__c2*v__c24 + v__s12*v__c2*v__c4 + v__s11*v__c2 + v__s5*v__c2*v_v1 + v__c20*v__c7 + v__c20*v__c9 + v__c21*v__c22 + v__c21*v__c7 + v__s18*v__c23*v_q1 + v__s5*v__c23 + v__s18*v__c24*v_q2 + v__s8*v__c24 - v__c25*v_q1 + v__c25*v_q3 - v__c26*v__c7*v_q2 + v__c28*v_q2*v_v1 + v__s6*v__c4 + v__s7*v__c5 + v__s7*v__c6 - 8.0*v__c7*v_q3*v_v1;
+}
+/* _fkchart2_step2_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart2_step2_g_shape[4] = {10, 3, 1, 186};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step2_g_numbers[] = {0};
+void bonered_rows__fkchart2_step2_g(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart2_step2_g(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major). */
+BF_INLINE void _fk_newton(double v_g, double v_v1, double v_v2, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__k0 = 1.7320508075688772;
+    const double v__k1 = 4.0*v__k0;
+    const double v__k2 = 2.0*v__k0;
+    const double v__s0 = -v__k1;
+    const double v__s1 = -v__k2;
+    const double v__s2 = v__k1;
+    const double v__s3 = v__k2*v_ra;
+    const double v__s4 = v__k2;
+    const double v__c0 = 3.0*v_q1;
+    const double v__c1 = (v_g*v_g);
+    const double v__c2 = v__s1*v_q1;
+    const double v__c3 = v__s2*v_v1;
+    const double v__c4 = 6.0*v_ra;
+    const double v__c5 = v__c4*v_g + v__s3;
+    const double v__c6 = 3.0*v_q2;
+    const double v__c7 = 6.0*v_v1;
+    const double v__c8 = 6.0*v_v2;
+    const double v__c9 = v__c8*v_g;
+    const double v__c10 = v__s1*v_q2;
+    const double v__c11 = v__s1*v_v1;
+    const double v__c12 = v__c11*v_g + v__c5 + v__s4*v_v2;
+    const double v__c13 = 3.0*v_q3;
+    const double v__c14 = v__s1*v_g;
+    const double v__c15 = 6.0*v_g;
+    const double v__c16 = v__c11 + v__c4;
+    out[0] = 0.0;
+    out[1] = v__c0*v__c1 - v__c0 + v__c2*v_g + v__c3*v_g + v__c5 + v__s0*v_v2;
+    out[2] = v__c1*v__c6 + v__c10*v_g + v__c12 - v__c6 + v__c7 + v__c9;
+    out[3] = v__c1*v__c13 + v__c12 - v__c13 + v__c14*v_q3 - v__c7 - v__c9;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = v__c15*v_q1 + v__c2 + v__c3 + v__c4;
+    out[8] = v__s2*v_g;
+    out[9] = -4.0*1.7320508075688772;
+    out[10] = v__c10 + v__c15*v_q2 + v__c16 + v__c8;
+    out[11] = v__c14 + 6.0;
+    out[12] = v__c15 + v__s4;
+    out[13] = v__c15*v_q3 + v__c16 - v__c8 + v__s1*v_q3;
+    out[14] = v__c14 - 6.0;
+    out[15] = -v__c15 + v__s4;
+}
+/* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fk_newton_shape[4] = {11, 16, 5, 73};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fk_newton_numbers[] = {0, 4, 5, 6, 9};
+void bonered_rows__fk_newton(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[16];
+        _fk_newton(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], o);
+        for (int m = 0; m < 16; m++)
+            out[m][i] = o[m];
+    }
+}
+
+#endif
 #if !defined(BF_PART) || BF_PART == 1
 BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,

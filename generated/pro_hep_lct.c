@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3f1dc288a149c246084f761b83b258b818eb30817f7256e6b45a1ac8e812852d
+ * Derivation hash: e9d45309c7a22937eb9d080ca45c09a82bd70a856335bffa839d69760f0a75d7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3f1dc288a149c246084f761b83b258b818eb30817f7256e6b45a1ac8e812852d";
+const char bonered_derivation_hash[] = "e9d45309c7a22937eb9d080ca45c09a82bd70a856335bffa839d69760f0a75d7";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -182,6 +182,1575 @@ BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double
 }
 #endif
 
+
+#if !defined(BF_PART) || BF_PART == 2
+/* Coefficients (A, B, C) of the generator solved for yu2 (from lex basis of the upper planar mechanism). */
+BF_INLINE void _fkstep0_yu2(double v_t1, double v_w1, double v_q4, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    out[0] = 0.0;
+    out[1] = 2.0;
+    out[2] = v_q5;
+}
+/* _fkstep0_yu2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep0_yu2_shape[4] = {15, 3, 2, 0};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep0_yu2_numbers[] = {0, 1};
+void bonered_rows__fkstep0_yu2(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep0_yu2(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yu3 (from lex basis of the upper planar mechanism). */
+BF_INLINE void _fkstep1_yu3(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    out[0] = 0.0;
+    out[1] = 2.0;
+    out[2] = v_Dz;
+}
+/* _fkstep1_yu3 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep1_yu3_shape[4] = {16, 3, 3, 0};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep1_yu3_numbers[] = {0, 1, 2};
+void bonered_rows__fkstep1_yu3(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep1_yu3(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yu1 (from lex basis of the upper planar mechanism). */
+BF_INLINE void _fkstep2_yu1(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_yu3, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    const double v__s0 = -(v_ld4*v_ld4) + (v_lq5*v_lq5);
+    out[0] = 4.0;
+    out[1] = 4.0*v_lq5;
+    out[2] = v__s0 + (v_q4*v_q4) - 2.0*v_q4*v_q5 + (v_q5*v_q5);
+}
+/* _fkstep2_yu1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep2_yu1_shape[4] = {17, 3, 2, 11};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep2_yu1_numbers[] = {0, 1};
+void bonered_rows__fkstep2_yu1(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep2_yu1(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yd2 (from lex basis of the lower planar mechanism). */
+BF_INLINE void _fkstep3_yd2(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_yu3, double v_yu1, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    const double v__k0 = (v_d*v_d);
+    const double v__k1 = 16.0*v__k0;
+    const double v__k2 = (v_l1*v_l1);
+    const double v__k3 = 16.0*v__k2;
+    const double v__k4 = (v_l3*v_l3);
+    const double v__k5 = 16.0*v__k4;
+    const double v__k6 = (v_lq4d*v_lq4d);
+    const double v__k7 = 16.0*v__k6;
+    const double v__k8 = 32.0*v__k0;
+    const double v__k9 = 32.0*v__k2;
+    const double v__k10 = 32.0*v__k4;
+    const double v__k11 = 32.0*v__k6;
+    const double v__k12 = 64.0*v_d;
+    const double v__k13 = v__k12*v_l3;
+    const double v__k14 = -v__k12*v_lq4d;
+    const double v__k15 = 64.0*v_lq4d;
+    const double v__k16 = v__k15*v_l1;
+    const double v__k17 = -v__k16;
+    const double v__k18 = v_d*v_lq4d;
+    const double v__k19 = -32.0*v__k18;
+    const double v__k20 = v_l1*v_l3;
+    const double v__k21 = 32.0*v__k20;
+    const double v__k22 = v__k12*v_l1;
+    const double v__k23 = 64.0*v__k0;
+    const double v__k24 = 64.0*v__k2;
+    const double v__k25 = 64.0*v__k4;
+    const double v__k26 = 64.0*v__k6;
+    const double v__k27 = 128.0*v_d;
+    const double v__k28 = v__k27*v_l3;
+    const double v__k29 = 128.0*v__k18;
+    const double v__k30 = -v__k29;
+    const double v__k31 = 128.0*v_lq4d;
+    const double v__k32 = -v__k31*v_l1;
+    const double v__k33 = -v__k21;
+    const double v__k34 = v__k27*v_l1;
+    const double v__k35 = v__k1 + v__k19 + v__k3 + v__k5 + v__k7;
+    const double v__k36 = (v_lq4d*v_lq4d*v_lq4d);
+    const double v__k37 = 8.0*v__k36;
+    const double v__k38 = (v_l1*v_l1*v_l1);
+    const double v__k39 = 16.0*v__k38;
+    const double v__k40 = (v_l3*v_l3*v_l3);
+    const double v__k41 = 16.0*v__k40;
+    const double v__k42 = 16.0*v__k36;
+    const double v__k43 = -v__k25*v_d;
+    const double v__k44 = v__k2*v_lq4d;
+    const double v__k45 = 48.0*v__k44;
+    const double v__k46 = -v__k45;
+    const double v__k47 = -v__k11*v_d;
+    const double v__k48 = v__k10*v_l1;
+    const double v__k49 = -v__k48;
+    const double v__k50 = v__k9*v_l3;
+    const double v__k51 = -v__k50;
+    const double v__k52 = (v_l2*v_l2);
+    const double v__k53 = 16.0*v__k52;
+    const double v__k54 = -v__k53*v_d;
+    const double v__k55 = -v__k7*v_d;
+    const double v__k56 = -v__k53*v_l1;
+    const double v__k57 = -v__k7*v_l1;
+    const double v__k58 = (v_l4*v_l4);
+    const double v__k59 = 16.0*v__k58;
+    const double v__k60 = v__k59*v_l3;
+    const double v__k61 = -v__k60;
+    const double v__k62 = -v__k59*v_lq4d;
+    const double v__k63 = 8.0*v_d;
+    const double v__k64 = v__k52*v__k63;
+    const double v__k65 = -v__k64;
+    const double v__k66 = 8.0*v_lq4d;
+    const double v__k67 = v__k58*v__k66;
+    const double v__k68 = -v__k67;
+    const double v__k69 = v__k58*v__k63;
+    const double v__k70 = v__k0*v__k66;
+    const double v__k71 = 8.0*v__k44;
+    const double v__k72 = v__k52*v__k66;
+    const double v__k73 = v__k4*v__k66;
+    const double v__k74 = v__k59*v_d;
+    const double v__k75 = v__k1*v_l1;
+    const double v__k76 = v__k5*v_l1;
+    const double v__k77 = v__k59*v_l1;
+    const double v__k78 = v__k1*v_l3;
+    const double v__k79 = v__k3*v_l3;
+    const double v__k80 = v__k53*v_l3;
+    const double v__k81 = v__k1*v_lq4d;
+    const double v__k82 = v__k3*v_lq4d;
+    const double v__k83 = v__k53*v_lq4d;
+    const double v__k84 = v__k5*v_lq4d;
+    const double v__k85 = 32.0*v__k38;
+    const double v__k86 = 32.0*v__k40;
+    const double v__k87 = 32.0*v__k36;
+    const double v__k88 = v__k6*v_l3;
+    const double v__k89 = 48.0*v__k88;
+    const double v__k90 = v__k24*v_d;
+    const double v__k91 = v__k4*v_lq4d;
+    const double v__k92 = 80.0*v__k91;
+    const double v__k93 = -v__k27*v__k4;
+    const double v__k94 = v__k4*v_l1;
+    const double v__k95 = -96.0*v__k94;
+    const double v__k96 = v__k2*v_l3;
+    const double v__k97 = -96.0*v__k96;
+    const double v__k98 = -96.0*v__k44;
+    const double v__k99 = -v__k13*v_lq4d;
+    const double v__k100 = -v__k26*v_d;
+    const double v__k101 = 32.0*v__k52;
+    const double v__k102 = -v__k101*v_d;
+    const double v__k103 = -v__k101*v_l1;
+    const double v__k104 = -v__k11*v_l1;
+    const double v__k105 = 32.0*v__k58;
+    const double v__k106 = -v__k105*v_l3;
+    const double v__k107 = -v__k105*v_lq4d;
+    const double v__k108 = 16.0*v__k20;
+    const double v__k109 = v__k108*v_lq4d;
+    const double v__k110 = v__k105*v_d;
+    const double v__k111 = v__k8*v_l1;
+    const double v__k112 = v__k105*v_l1;
+    const double v__k113 = v__k8*v_l3;
+    const double v__k114 = v__k101*v_l3;
+    const double v__k115 = v__k8*v_lq4d;
+    const double v__k116 = v__k101*v_lq4d;
+    const double v__k117 = 96.0*v__k88;
+    const double v__k118 = v__k2*v__k27;
+    const double v__k119 = 160.0*v__k91;
+    const double v__k120 = -v__k29*v_l3;
+    const double v__k121 = -v__k109;
+    const double v__k122 = v__k37 + v__k55 + v__k65 + v__k68 + v__k69 + v__k70 + v__k71 + v__k72 + v__k73;
+    const double v__k123 = v__k39 + v__k56 + v__k57 + v__k75 + v__k76 + v__k77;
+    const double v__k124 = v__k41 + v__k61 + v__k78 + v__k79 + v__k80 + v__k89 + v__k99;
+    const double v__k125 = v__k42 + v__k47 + v__k54 + v__k62 + v__k74 + v__k81 + v__k83;
+    const double v__k126 = (v_l1*v_l1*v_l1*v_l1);
+    const double v__k127 = (v_l2*v_l2*v_l2*v_l2);
+    const double v__k128 = (v_l3*v_l3*v_l3*v_l3);
+    const double v__k129 = (v_l4*v_l4*v_l4*v_l4);
+    const double v__k130 = (v_lq4d*v_lq4d*v_lq4d*v_lq4d);
+    const double v__k131 = 2.0*v__k126;
+    const double v__k132 = 2.0*v__k127;
+    const double v__k133 = 2.0*v__k128;
+    const double v__k134 = 2.0*v__k129;
+    const double v__k135 = 2.0*v__k130;
+    const double v__k136 = v__k0*v__k2;
+    const double v__k137 = v__k0*v__k4;
+    const double v__k138 = v__k0*v__k6;
+    const double v__k139 = v__k2*v__k6;
+    const double v__k140 = -12.0*v__k139;
+    const double v__k141 = 4.0*v_d;
+    const double v__k142 = -v__k141*v__k40;
+    const double v__k143 = -v__k141*v__k36;
+    const double v__k144 = 4.0*v__k2;
+    const double v__k145 = -v__k144*v__k52;
+    const double v__k146 = -v__k144*v__k4;
+    const double v__k147 = -v__k144*v__k58;
+    const double v__k148 = 4.0*v__k52;
+    const double v__k149 = -v__k148*v__k4;
+    const double v__k150 = -v__k148*v__k58;
+    const double v__k151 = 4.0*v__k58;
+    const double v__k152 = -v__k151*v__k4;
+    const double v__k153 = -v__k151*v__k6;
+    const double v__k154 = -2.0*v__k36*v_d;
+    const double v__k155 = 2.0*v__k2;
+    const double v__k156 = -v__k155*v__k52;
+    const double v__k157 = -v__k155*v__k58;
+    const double v__k158 = 2.0*v__k52;
+    const double v__k159 = -v__k158*v__k4;
+    const double v__k160 = -v__k158*v__k58;
+    const double v__k161 = 2.0*v__k58;
+    const double v__k162 = -v__k161*v__k4;
+    const double v__k163 = -v__k161*v__k6;
+    const double v__k164 = 2.0*v__k136;
+    const double v__k165 = 2.0*v__k137;
+    const double v__k166 = 2.0*v__k138;
+    const double v__k167 = 2.0*v__k139;
+    const double v__k168 = v__k158*v__k6;
+    const double v__k169 = v__k4*v__k6;
+    const double v__k170 = 2.0*v__k169;
+    const double v__k171 = v__k141*v__k38;
+    const double v__k172 = 4.0*v_l1;
+    const double v__k173 = v__k172*v__k40;
+    const double v__k174 = 4.0*v_l3;
+    const double v__k175 = v__k174*v__k38;
+    const double v__k176 = 4.0*v__k139;
+    const double v__k177 = 4.0*v__k126;
+    const double v__k178 = v__k148*v__k6;
+    const double v__k179 = 4.0*v__k127;
+    const double v__k180 = 4.0*v__k169;
+    const double v__k181 = 4.0*v__k128;
+    const double v__k182 = 4.0*v__k129;
+    const double v__k183 = 4.0*v__k130;
+    const double v__k184 = v__k2*v__k4;
+    const double v__k185 = 6.0*v__k184;
+    const double v__k186 = v__k37*v_l3;
+    const double v__k187 = v__k40*v__k66;
+    const double v__k188 = v__k2*v__k58;
+    const double v__k189 = 12.0*v__k188;
+    const double v__k190 = v__k4*v__k52;
+    const double v__k191 = 12.0*v__k190;
+    const double v__k192 = 20.0*v__k169;
+    const double v__k193 = -40.0*v__k184;
+    const double v__k194 = -24.0*v__k139;
+    const double v__k195 = v__k18*v__k4;
+    const double v__k196 = -20.0*v__k195;
+    const double v__k197 = v__k76*v_lq4d;
+    const double v__k198 = -v__k197;
+    const double v__k199 = v__k88*v_d;
+    const double v__k200 = -12.0*v__k199;
+    const double v__k201 = v__k63*v__k94;
+    const double v__k202 = -v__k201;
+    const double v__k203 = v__k63*v__k96;
+    const double v__k204 = -v__k203;
+    const double v__k205 = -v__k40*v__k63;
+    const double v__k206 = -v__k37*v_d;
+    const double v__k207 = -v__k67*v_l3;
+    const double v__k208 = 8.0*v__k52;
+    const double v__k209 = -v__k2*v__k208;
+    const double v__k210 = -v__k208*v__k58;
+    const double v__k211 = 8.0*v__k58;
+    const double v__k212 = -v__k211*v__k4;
+    const double v__k213 = -v__k211*v__k6;
+    const double v__k214 = v__k141*v_l1;
+    const double v__k215 = -v__k214*v__k52;
+    const double v__k216 = -v__k214*v__k6;
+    const double v__k217 = -v__k141*v__k96;
+    const double v__k218 = v__k141*v_l3;
+    const double v__k219 = -v__k218*v__k52;
+    const double v__k220 = -v__k144*v__k18;
+    const double v__k221 = -v__k148*v__k18;
+    const double v__k222 = -4.0*v__k195;
+    const double v__k223 = v__k148*v__k20;
+    const double v__k224 = -v__k223;
+    const double v__k225 = v__k151*v__k20;
+    const double v__k226 = -v__k225;
+    const double v__k227 = -v__k173;
+    const double v__k228 = -v__k175;
+    const double v__k229 = -v__k155*v__k18;
+    const double v__k230 = -v__k158*v__k18;
+    const double v__k231 = -2.0*v__k195;
+    const double v__k232 = v__k161*v__k18;
+    const double v__k233 = v__k0*v__k20;
+    const double v__k234 = 2.0*v__k233;
+    const double v__k235 = v__k141*v__k94;
+    const double v__k236 = v__k214*v__k58;
+    const double v__k237 = v__k218*v__k58;
+    const double v__k238 = v__k151*v__k18;
+    const double v__k239 = 4.0*v__k20;
+    const double v__k240 = v__k239*v__k6;
+    const double v__k241 = v__k0*v_lq4d;
+    const double v__k242 = v__k172*v__k241;
+    const double v__k243 = v__k174*v__k241;
+    const double v__k244 = 4.0*v__k136;
+    const double v__k245 = 4.0*v__k137;
+    const double v__k246 = 4.0*v__k138;
+    const double v__k247 = v__k38*v__k63;
+    const double v__k248 = v__k71*v_l3;
+    const double v__k249 = v__k72*v_l3;
+    const double v__k250 = v__k208*v__k6;
+    const double v__k251 = v__k18*v__k2;
+    const double v__k252 = 12.0*v__k251;
+    const double v__k253 = v__k42*v_l3;
+    const double v__k254 = v__k41*v_lq4d;
+    const double v__k255 = 24.0*v__k188;
+    const double v__k256 = 24.0*v__k190;
+    const double v__k257 = 40.0*v__k169;
+    const double v__k258 = -v__k45*v_l3;
+    const double v__k259 = -40.0*v__k195;
+    const double v__k260 = 24.0*v_d;
+    const double v__k261 = -v__k260*v__k94;
+    const double v__k262 = -24.0*v__k199;
+    const double v__k263 = -v__k60*v_lq4d;
+    const double v__k264 = -v__k64*v_l1;
+    const double v__k265 = -v__k6*v__k63*v_l1;
+    const double v__k266 = -v__k64*v_l3;
+    const double v__k267 = -v__k18*v__k208;
+    const double v__k268 = v__k18*v__k239;
+    const double v__k269 = -v__k268;
+    const double v__k270 = -v__k240;
+    const double v__k271 = -v__k234;
+    const double v__k272 = v__k69*v_l1;
+    const double v__k273 = v__k69*v_l3;
+    const double v__k274 = v__k18*v__k211;
+    const double v__k275 = 8.0*v__k233;
+    const double v__k276 = v__k70*v_l1;
+    const double v__k277 = v__k70*v_l3;
+    const double v__k278 = v__k80*v_lq4d;
+    const double v__k279 = v__k260*v__k96;
+    const double v__k280 = 24.0*v__k251;
+    const double v__k281 = -v__k108*v__k18;
+    const double v__k282 = v__k126 + v__k127 + v__k128 + v__k129 + v__k130 + v__k136 + v__k137 + v__k138 + v__k154 + v__k156 + v__k157 + v__k159 + v__k160 + v__k162 + v__k163 + v__k167 + v__k168 + v__k170 + v__k185 + v__k229 + v__k230 + v__k231 + v__k232;
+    const double v__k283 = v__k131 + v__k132 + v__k133 + v__k134 + v__k135 + v__k143 + v__k145 + v__k146 + v__k150 + v__k152 + v__k153 + v__k164 + v__k165 + v__k166 + v__k178 + v__k221 + v__k238;
+    const double v__k284 = v__k142 + v__k186 + v__k187 + v__k200 + v__k207 + v__k217 + v__k219 + v__k237 + v__k243 + v__k248 + v__k249;
+    const double v__k285 = v__k171 + v__k215 + v__k216 + v__k235 + v__k236 + v__k242;
+    const double v__s0 = v__k1;
+    const double v__s1 = v__k3;
+    const double v__s2 = v__k5;
+    const double v__s3 = v__k7;
+    const double v__s4 = v__k8;
+    const double v__s5 = v__k9;
+    const double v__s6 = v__k10;
+    const double v__s7 = v__k11;
+    const double v__s8 = -v__k13;
+    const double v__s9 = v__k14;
+    const double v__s10 = v__k17;
+    const double v__s11 = v__k19;
+    const double v__s12 = v__k21;
+    const double v__s13 = v__k22;
+    const double v__s14 = v__k15*v_l3;
+    const double v__s15 = v__k23;
+    const double v__s16 = v__k24;
+    const double v__s17 = v__k25;
+    const double v__s18 = v__k26;
+    const double v__s19 = -v__k28;
+    const double v__s20 = v__k30;
+    const double v__s21 = -128.0*v__k20;
+    const double v__s22 = v__k32;
+    const double v__s23 = v__k33;
+    const double v__s24 = v__k34;
+    const double v__s25 = v__k31*v_l3;
+    const double v__s26 = v__k33 + v__k35;
+    const double v__s27 = v__k21 + v__k35;
+    const double v__s28 = v__k17 + v__k22;
+    const double v__s29 = -v__k13 + 64.0*v_l3*v_lq4d;
+    const double v__s30 = v__k10 + v__k11 + v__k14 + v__k8 + v__k9;
+    const double v__s31 = v__k23 + v__k24 + v__k25 + v__k26 + v__k30;
+    const double v__s32 = -v__k28 + 128.0*v_l3*v_lq4d;
+    const double v__s33 = v__k32 + v__k34;
+    const double v__s34 = v__k37;
+    const double v__s35 = v__k39;
+    const double v__s36 = v__k41;
+    const double v__s37 = v__k42;
+    const double v__s38 = v__k43;
+    const double v__s39 = v__k46;
+    const double v__s40 = v__k47;
+    const double v__s41 = v__k49;
+    const double v__s42 = v__k51;
+    const double v__s43 = v__k54;
+    const double v__s44 = v__k55;
+    const double v__s45 = v__k56;
+    const double v__s46 = v__k57;
+    const double v__s47 = v__k61;
+    const double v__s48 = v__k62;
+    const double v__s49 = v__k65;
+    const double v__s50 = v__k68;
+    const double v__s51 = v__k69;
+    const double v__s52 = v__k70;
+    const double v__s53 = v__k71;
+    const double v__s54 = v__k72;
+    const double v__s55 = v__k73;
+    const double v__s56 = v__k74;
+    const double v__s57 = v__k75;
+    const double v__s58 = v__k76;
+    const double v__s59 = v__k77;
+    const double v__s60 = v__k78;
+    const double v__s61 = v__k79;
+    const double v__s62 = v__k80;
+    const double v__s63 = v__k81;
+    const double v__s64 = v__k82;
+    const double v__s65 = v__k83;
+    const double v__s66 = v__k84;
+    const double v__s67 = v__k48;
+    const double v__s68 = v__k50;
+    const double v__s69 = v__k85;
+    const double v__s70 = v__k86;
+    const double v__s71 = v__k87;
+    const double v__s72 = v__k89;
+    const double v__s73 = v__k90;
+    const double v__s74 = v__k92;
+    const double v__s75 = v__k93;
+    const double v__s76 = v__k95;
+    const double v__s77 = v__k97;
+    const double v__s78 = v__k98;
+    const double v__s79 = v__k99;
+    const double v__s80 = v__k100;
+    const double v__s81 = v__k102;
+    const double v__s82 = v__k103;
+    const double v__s83 = v__k104;
+    const double v__s84 = v__k106;
+    const double v__s85 = v__k107;
+    const double v__s86 = v__k109;
+    const double v__s87 = v__k110;
+    const double v__s88 = v__k111;
+    const double v__s89 = v__k112;
+    const double v__s90 = v__k113;
+    const double v__s91 = v__k114;
+    const double v__s92 = v__k115;
+    const double v__s93 = v__k116;
+    const double v__s94 = v__k117;
+    const double v__s95 = v__k118;
+    const double v__s96 = v__k119;
+    const double v__s97 = v__k120;
+    const double v__s98 = -v__k16*v_l3;
+    const double v__s99 = v__k121;
+    const double v__s100 = v__k121 + v__k122;
+    const double v__s101 = v__k109 + v__k122;
+    const double v__s102 = v__k123 + v__k51;
+    const double v__s103 = v__k123 + v__k50;
+    const double v__s104 = v__k124 + v__k49;
+    const double v__s105 = v__k124 + v__k48;
+    const double v__s106 = v__k125 + v__k46 + v__k84 + v__k90;
+    const double v__s107 = v__k125 + v__k43 + v__k82 + v__k92;
+    const double v__s108 = v__k103 + v__k104 + v__k111 + v__k112 + v__k85 + v__k95;
+    const double v__s109 = v__k106 + v__k113 + v__k114 + v__k117 + v__k120 + v__k86 + v__k97;
+    const double v__s110 = v__k100 + v__k102 + v__k107 + v__k110 + v__k115 + v__k116 + v__k118 + v__k119 + v__k87 + v__k93 + v__k98;
+    const double v__s111 = v__k126;
+    const double v__s112 = v__k127;
+    const double v__s113 = v__k128;
+    const double v__s114 = v__k129;
+    const double v__s115 = v__k130;
+    const double v__s116 = v__k131;
+    const double v__s117 = v__k132;
+    const double v__s118 = v__k133;
+    const double v__s119 = v__k134;
+    const double v__s120 = v__k135;
+    const double v__s121 = v__k136;
+    const double v__s122 = v__k137;
+    const double v__s123 = v__k138;
+    const double v__s124 = v__k140;
+    const double v__s125 = v__k142;
+    const double v__s126 = v__k143;
+    const double v__s127 = v__k145;
+    const double v__s128 = v__k146;
+    const double v__s129 = v__k147;
+    const double v__s130 = v__k149;
+    const double v__s131 = v__k150;
+    const double v__s132 = v__k152;
+    const double v__s133 = v__k153;
+    const double v__s134 = v__k154;
+    const double v__s135 = v__k156;
+    const double v__s136 = v__k157;
+    const double v__s137 = v__k159;
+    const double v__s138 = v__k160;
+    const double v__s139 = v__k162;
+    const double v__s140 = v__k163;
+    const double v__s141 = v__k164;
+    const double v__s142 = v__k165;
+    const double v__s143 = v__k166;
+    const double v__s144 = v__k167;
+    const double v__s145 = v__k168;
+    const double v__s146 = v__k170;
+    const double v__s147 = v__k171;
+    const double v__s148 = v__k173;
+    const double v__s149 = v__k175;
+    const double v__s150 = v__k176;
+    const double v__s151 = v__k177;
+    const double v__s152 = v__k178;
+    const double v__s153 = v__k179;
+    const double v__s154 = v__k180;
+    const double v__s155 = v__k181;
+    const double v__s156 = v__k182;
+    const double v__s157 = v__k183;
+    const double v__s158 = v__k185;
+    const double v__s159 = v__k186;
+    const double v__s160 = v__k187;
+    const double v__s161 = v__k189;
+    const double v__s162 = v__k191;
+    const double v__s163 = v__k192;
+    const double v__s164 = v__k193;
+    const double v__s165 = v__k194;
+    const double v__s166 = v__k196;
+    const double v__s167 = v__k198;
+    const double v__s168 = v__k200;
+    const double v__s169 = v__k202;
+    const double v__s170 = v__k204;
+    const double v__s171 = v__k205;
+    const double v__s172 = v__k206;
+    const double v__s173 = v__k207;
+    const double v__s174 = v__k209;
+    const double v__s175 = v__k210;
+    const double v__s176 = v__k212;
+    const double v__s177 = v__k213;
+    const double v__s178 = v__k215;
+    const double v__s179 = v__k216;
+    const double v__s180 = v__k217;
+    const double v__s181 = v__k219;
+    const double v__s182 = v__k220;
+    const double v__s183 = v__k221;
+    const double v__s184 = v__k222;
+    const double v__s185 = v__k224;
+    const double v__s186 = v__k226;
+    const double v__s187 = v__k227;
+    const double v__s188 = v__k228;
+    const double v__s189 = v__k229;
+    const double v__s190 = v__k230;
+    const double v__s191 = v__k231;
+    const double v__s192 = v__k232;
+    const double v__s193 = v__k234;
+    const double v__s194 = v__k235;
+    const double v__s195 = v__k236;
+    const double v__s196 = v__k237;
+    const double v__s197 = v__k238;
+    const double v__s198 = v__k240;
+    const double v__s199 = v__k242;
+    const double v__s200 = v__k243;
+    const double v__s201 = v__k244;
+    const double v__s202 = v__k245;
+    const double v__s203 = v__k246;
+    const double v__s204 = v__k201;
+    const double v__s205 = v__k203;
+    const double v__s206 = v__k247;
+    const double v__s207 = v__k248;
+    const double v__s208 = v__k249;
+    const double v__s209 = v__k250;
+    const double v__s210 = v__k252;
+    const double v__s211 = v__k197;
+    const double v__s212 = v__k253;
+    const double v__s213 = v__k254;
+    const double v__s214 = v__k255;
+    const double v__s215 = v__k256;
+    const double v__s216 = v__k257;
+    const double v__s217 = v__k258;
+    const double v__s218 = v__k259;
+    const double v__s219 = v__k261;
+    const double v__s220 = v__k262;
+    const double v__s221 = v__k263;
+    const double v__s222 = v__k264;
+    const double v__s223 = v__k265;
+    const double v__s224 = v__k266;
+    const double v__s225 = v__k267;
+    const double v__s226 = v__k269;
+    const double v__s227 = v__k270;
+    const double v__s228 = v__k271;
+    const double v__s229 = v__k223;
+    const double v__s230 = v__k225;
+    const double v__s231 = v__k272;
+    const double v__s232 = v__k273;
+    const double v__s233 = v__k274;
+    const double v__s234 = v__k275;
+    const double v__s235 = v__k276;
+    const double v__s236 = v__k277;
+    const double v__s237 = v__k278;
+    const double v__s238 = v__k279;
+    const double v__s239 = v__k280;
+    const double v__s240 = v__k281;
+    const double v__s241 = v__k268;
+    const double v__s242 = v__k223 + v__k225 + v__k227 + v__k228 + v__k268 + v__k270 + v__k271 + v__k282;
+    const double v__s243 = v__k173 + v__k175 + v__k224 + v__k226 + v__k234 + v__k240 + v__k269 + v__k282;
+    const double v__s244 = v__k140 + v__k149 + v__k180 + v__k189 + v__k222 + v__k252 + v__k283;
+    const double v__s245 = v__k147 + v__k176 + v__k191 + v__k192 + v__k196 + v__k220 + v__k283;
+    const double v__s246 = v__k198 + v__k201 + v__k284;
+    const double v__s247 = v__k197 + v__k202 + v__k284;
+    const double v__s248 = v__k204 + v__k285;
+    const double v__s249 = v__k203 + v__k285;
+    const double v__s250 = v__k177 + v__k179 + v__k181 + v__k182 + v__k183 + v__k193 + v__k194 + v__k206 + v__k209 + v__k210 + v__k212 + v__k213 + v__k244 + v__k245 + v__k246 + v__k250 + v__k255 + v__k256 + v__k257 + v__k259 + v__k267 + v__k274 + v__k280;
+    const double v__s251 = v__k205 + v__k253 + v__k254 + v__k258 + v__k262 + v__k263 + v__k266 + v__k273 + v__k277 + v__k278 + v__k279;
+    const double v__s252 = v__k247 + v__k261 + v__k264 + v__k265 + v__k272 + v__k276;
+    const double v__s253 = v__k275 + v__k281;
+    const double v__c0 = v__s28*v_t1;
+    const double v__c1 = v__s29*v_w1;
+    const double v__c2 = v__s21*v_t1;
+    const double v__c3 = (v_t1*v_t1*v_t1*v_t1);
+    const double v__c4 = (v_w1*v_w1*v_w1*v_w1);
+    const double v__c5 = (v_t1*v_t1*v_t1);
+    const double v__c6 = v__s28*v__c5;
+    const double v__c7 = (v_w1*v_w1*v_w1);
+    const double v__c8 = v__s29*v__c7;
+    const double v__c9 = (v_t1*v_t1);
+    const double v__c10 = v__s30*v__c9;
+    const double v__c11 = (v_w1*v_w1);
+    const double v__c12 = v__s30*v__c11;
+    const double v__c13 = v__s21*v__c5;
+    const double v__c14 = v__s32*v__c9;
+    const double v__c15 = v__s33*v__c11;
+    const double v__c16 = v__c3*v__c4;
+    const double v__c17 = v__c11*v__c9;
+    const double v__c18 = v__s98*v_t1;
+    const double v__c19 = v__s106*v__c9;
+    const double v__c20 = v__s107*v__c11;
+    const double v__c21 = v__c4*v_t1;
+    const double v__c22 = v__c3*v_w1;
+    const double v__c23 = v__s108*v__c11;
+    const double v__c24 = v__s109*v__c9;
+    const double v__c25 = v__s98*v__c5;
+    const double v__c26 = v__c4*v__c5;
+    const double v__c27 = v__c3*v__c7;
+    const double v__c28 = v__s253*v_t1;
+    const double v__c29 = v__s244*v__c9;
+    const double v__c30 = v__s245*v__c11;
+    const double v__c31 = v__s251*v__c9;
+    const double v__c32 = v__s252*v__c11;
+    const double v__c33 = v__s253*v__c5;
+    out[0] = v__c0*v__c4 + v__c0 + v__c1*v__c3 + v__c1 + v__c10*v__c4 + v__c10 + v__c12*v__c3 + v__c12 + v__c13*v__c7 + v__c13*v_w1 + v__c14*v__c7 + v__c14*v_w1 + v__c15*v__c5 + v__c15*v_t1 + v__s26*v__c16 + v__s31*v__c17 + v__c2*v__c7 + v__c2*v_w1 + v__c3*v__c8 + v__s27*v__c3 + v__c4*v__c6 + v__s27*v__c4 + v__c6 + v__c8 + v__s26;
+    out[1] = v__s100*v__c16 + v__s110*v__c17 + v__c18*v__c7 + v__c18*v_w1 + v__c19*v__c4 + v__c19 + v__c20*v__c3 + v__c20 + v__s103*v__c21 + v__s105*v__c22 + v__c23*v__c5 + v__c23*v_t1 + v__c24*v__c7 + v__c24*v_w1 + v__c25*v__c7 + v__c25*v_w1 + v__s102*v__c26 + v__s104*v__c27 + v__s101*v__c3 + v__s101*v__c4 + v__s103*v__c5 + v__s105*v__c7 + v__s100 + v__s102*v_t1 + v__s104*v_w1;
+    out[2] = v__s242*v__c16 + v__s250*v__c17 + v__s249*v__c21 + v__s247*v__c22 + v__s248*v__c26 + v__s246*v__c27 + v__c28*v__c7 + v__c28*v_w1 + v__c29*v__c4 + v__c29 + v__c3*v__c30 + v__s243*v__c3 + v__c30 + v__c31*v__c7 + v__c31*v_w1 + v__c32*v__c5 + v__c32*v_t1 + v__c33*v__c7 + v__c33*v_w1 + v__s243*v__c4 + v__s249*v__c5 + v__s247*v__c7 + v__s242 + v__s246*v_w1 + v__s248*v_t1;
+}
+/* _fkstep3_yd2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep3_yd2_shape[4] = {18, 3, 0, 728};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep3_yd2_numbers[] = {-1};
+void bonered_rows__fkstep3_yd2(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep3_yd2(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yd1 (from lex basis of the lower planar mechanism). */
+BF_INLINE void _fkstep4_yd1(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_yu3, double v_yu1, double v_yd2, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    const double v__k0 = v_l1 - v_l3;
+    const double v__k1 = v_l1 + v_l3;
+    const double v__k2 = (v_l2*v_l2);
+    const double v__k3 = (v_l3*v_l3);
+    const double v__k4 = (v_lq4d*v_lq4d);
+    const double v__k5 = (v_l1*v_l1);
+    const double v__k6 = (v_l4*v_l4);
+    const double v__k7 = v_d*v_lq4d;
+    const double v__k8 = 2.0*v_d;
+    const double v__k9 = v__k8*v_l3;
+    const double v__s0 = -v__k0;
+    const double v__s1 = v__k1;
+    const double v__s2 = -v__k1;
+    const double v__s3 = v__k0;
+    const double v__s4 = v__k2;
+    const double v__s5 = v__k3;
+    const double v__s6 = v__k4;
+    const double v__s7 = -v__k5;
+    const double v__s8 = -v__k6;
+    const double v__s9 = -v__k7;
+    const double v__s10 = -v__k8*v_l1;
+    const double v__s11 = -v__k9;
+    const double v__s12 = 4.0*v_l3*v_lq4d;
+    const double v__s13 = v__k2 + v__k3 + v__k4 - v__k5 - v__k6 - v__k7;
+    const double v__s14 = -v__k9 + 4.0*v_l3*v_lq4d;
+    const double v__s15 = -4.0*v_d + 4.0*v_lq4d;
+    const double v__c0 = (v_t1*v_t1);
+    const double v__c1 = 4.0*v__c0;
+    const double v__c2 = (v_w1*v_w1);
+    const double v__c3 = v__s10*v_t1;
+    const double v__c4 = v__s14*v_w1;
+    const double v__c5 = v__s15*v_yd2;
+    const double v__c6 = v__s13*v__c0;
+    const double v__c7 = 8.0*v_yd2;
+    const double v__c8 = v_l1*v__c7*v_t1;
+    const double v__c9 = v_l3*v__c7*v_w1;
+    const double v__c10 = v__c0*v__c5;
+    out[0] = 0.0;
+    out[1] = v__s3*v__c1*v__c2 + v__s1*v__c1 + 4.0*v__s2*v__c2 + 4.0*v__s0;
+    out[2] = v__c0*v__c4 + v__c0*v__c9 + v__c10*v__c2 + v__c10 + v__c2*v__c3 + v__c2*v__c5 + v__c2*v__c6 - v__c2*v__c8 + v__s13*v__c2 + v__c3 + v__c4 + v__c5 + v__c6 - v__c8 + v__c9 + v__s13;
+}
+/* _fkstep4_yd1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkstep4_yd1_shape[4] = {19, 3, 1, 76};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep4_yd1_numbers[] = {0};
+void bonered_rows__fkstep4_yd1(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkstep4_yd1(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yu2 (from lex basis of the upper planar mechanism). */
+BF_INLINE void _fkchart1_step0_yu2(double v_t1, double v_w1, double v_q4, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    out[0] = 0.0;
+    out[1] = 2.0;
+    out[2] = v_q5;
+}
+/* _fkchart1_step0_yu2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step0_yu2_shape[4] = {15, 3, 2, 0};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step0_yu2_numbers[] = {0, 1};
+void bonered_rows__fkchart1_step0_yu2(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step0_yu2(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yu3 (from lex basis of the upper planar mechanism). */
+BF_INLINE void _fkchart1_step1_yu3(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    out[0] = 0.0;
+    out[1] = 2.0;
+    out[2] = v_Dz;
+}
+/* _fkchart1_step1_yu3 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step1_yu3_shape[4] = {16, 3, 3, 0};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step1_yu3_numbers[] = {0, 1, 2};
+void bonered_rows__fkchart1_step1_yu3(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step1_yu3(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yu1 (from lex basis of the upper planar mechanism). */
+BF_INLINE void _fkchart1_step2_yu1(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_yu3, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    const double v__s0 = -(v_ld4*v_ld4) + (v_lq5*v_lq5);
+    out[0] = 4.0;
+    out[1] = 4.0*v_lq5;
+    out[2] = v__s0 + (v_q4*v_q4) - 2.0*v_q4*v_q5 + (v_q5*v_q5);
+}
+/* _fkchart1_step2_yu1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step2_yu1_shape[4] = {17, 3, 2, 11};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step2_yu1_numbers[] = {0, 1};
+void bonered_rows__fkchart1_step2_yu1(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step2_yu1(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yd1 (from lex basis of the lower planar mechanism). */
+BF_INLINE void _fkchart1_step3_yd1(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_yu3, double v_yu1, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    const double v__k0 = (v_d*v_d);
+    const double v__k1 = 16.0*v__k0;
+    const double v__k2 = (v_l1*v_l1);
+    const double v__k3 = 16.0*v__k2;
+    const double v__k4 = (v_l3*v_l3);
+    const double v__k5 = 16.0*v__k4;
+    const double v__k6 = (v_lq4d*v_lq4d);
+    const double v__k7 = 16.0*v__k6;
+    const double v__k8 = 32.0*v__k0;
+    const double v__k9 = 32.0*v__k2;
+    const double v__k10 = 32.0*v__k4;
+    const double v__k11 = 32.0*v__k6;
+    const double v__k12 = 64.0*v_d;
+    const double v__k13 = v__k12*v_l3;
+    const double v__k14 = -v__k12*v_lq4d;
+    const double v__k15 = 64.0*v_lq4d;
+    const double v__k16 = -v__k15*v_l1;
+    const double v__k17 = v_d*v_lq4d;
+    const double v__k18 = 32.0*v__k17;
+    const double v__k19 = -v__k18;
+    const double v__k20 = v_l1*v_l3;
+    const double v__k21 = 32.0*v__k20;
+    const double v__k22 = v__k12*v_l1;
+    const double v__k23 = 64.0*v__k0;
+    const double v__k24 = 64.0*v__k2;
+    const double v__k25 = 64.0*v__k4;
+    const double v__k26 = 64.0*v__k6;
+    const double v__k27 = 128.0*v_d;
+    const double v__k28 = v__k27*v_l3;
+    const double v__k29 = -128.0*v__k17;
+    const double v__k30 = 128.0*v_lq4d;
+    const double v__k31 = -v__k30*v_l1;
+    const double v__k32 = -v__k21;
+    const double v__k33 = v__k27*v_l1;
+    const double v__k34 = v__k1 + v__k19 + v__k3 + v__k5 + v__k7;
+    const double v__k35 = (v_l1*v_l1*v_l1);
+    const double v__k36 = 8.0*v__k35;
+    const double v__k37 = (v_l3*v_l3*v_l3);
+    const double v__k38 = 8.0*v__k37;
+    const double v__k39 = -v__k38;
+    const double v__k40 = 16.0*v__k35;
+    const double v__k41 = 16.0*v__k37;
+    const double v__k42 = v__k10*v_d;
+    const double v__k43 = -v__k42;
+    const double v__k44 = v__k9*v_d;
+    const double v__k45 = v__k9*v_lq4d;
+    const double v__k46 = -v__k45;
+    const double v__k47 = v__k10*v_lq4d;
+    const double v__k48 = -v__k47;
+    const double v__k49 = (v_l2*v_l2);
+    const double v__k50 = v__k49*v_l1;
+    const double v__k51 = 16.0*v__k50;
+    const double v__k52 = -v__k51;
+    const double v__k53 = (v_l4*v_l4);
+    const double v__k54 = v__k53*v_l3;
+    const double v__k55 = 16.0*v__k54;
+    const double v__k56 = -v__k55;
+    const double v__k57 = 8.0*v_l1;
+    const double v__k58 = v__k0*v__k57;
+    const double v__k59 = 8.0*v__k50;
+    const double v__k60 = -v__k59;
+    const double v__k61 = v__k4*v__k57;
+    const double v__k62 = -v__k61;
+    const double v__k63 = v__k53*v__k57;
+    const double v__k64 = v__k57*v__k6;
+    const double v__k65 = 8.0*v_l3;
+    const double v__k66 = v__k0*v__k65;
+    const double v__k67 = -v__k66;
+    const double v__k68 = v__k2*v__k65;
+    const double v__k69 = -v__k68;
+    const double v__k70 = v__k49*v__k65;
+    const double v__k71 = -v__k70;
+    const double v__k72 = 8.0*v__k54;
+    const double v__k73 = -v__k72;
+    const double v__k74 = v__k6*v__k65;
+    const double v__k75 = -v__k74;
+    const double v__k76 = v__k1*v_l1;
+    const double v__k77 = 16.0*v_l1;
+    const double v__k78 = v__k53*v__k77;
+    const double v__k79 = v__k7*v_l1;
+    const double v__k80 = v__k1*v_l3;
+    const double v__k81 = 16.0*v_l3;
+    const double v__k82 = v__k49*v__k81;
+    const double v__k83 = v__k7*v_l3;
+    const double v__k84 = v__k4*v_l1;
+    const double v__k85 = 48.0*v__k84;
+    const double v__k86 = v__k2*v_l3;
+    const double v__k87 = 48.0*v__k86;
+    const double v__k88 = v__k25*v_d;
+    const double v__k89 = v__k24*v_d;
+    const double v__k90 = v__k25*v_l1;
+    const double v__k91 = -v__k90;
+    const double v__k92 = v__k24*v_l3;
+    const double v__k93 = v__k24*v_lq4d;
+    const double v__k94 = -v__k93;
+    const double v__k95 = v__k25*v_lq4d;
+    const double v__k96 = -v__k95;
+    const double v__k97 = v__k21*v_d;
+    const double v__k98 = -v__k97;
+    const double v__k99 = v__k18*v_l1;
+    const double v__k100 = -v__k99;
+    const double v__k101 = v__k18*v_l3;
+    const double v__k102 = -v__k101;
+    const double v__k103 = v__k21*v_lq4d;
+    const double v__k104 = -v__k103;
+    const double v__k105 = v__k17*v__k77;
+    const double v__k106 = -v__k105;
+    const double v__k107 = v__k17*v__k81;
+    const double v__k108 = -v__k107;
+    const double v__k109 = v__k106 + v__k36 + v__k58 + v__k60 + v__k62 + v__k63 + v__k64;
+    const double v__k110 = v__k108 + v__k109 + v__k38 + v__k66 + v__k69 + v__k70 + v__k73 + v__k74;
+    const double v__k111 = v__k107 + v__k109 + v__k39 + v__k67 + v__k68 + v__k71 + v__k72 + v__k75;
+    const double v__k112 = v__k44 + v__k46;
+    const double v__k113 = v__k104 + v__k97;
+    const double v__k114 = v__k112 + v__k113;
+    const double v__k115 = v__k103 + v__k112 + v__k98;
+    const double v__k116 = v__k113 + v__k42 + v__k48;
+    const double v__k117 = v__k113 + v__k43 + v__k47;
+    const double v__k118 = v__k100 + v__k40 + v__k52 + v__k76 + v__k78 + v__k79 + v__k85;
+    const double v__k119 = v__k102 + v__k41 + v__k56 + v__k80 + v__k82 + v__k83 + v__k87;
+    const double v__k120 = v__k89 + v__k94;
+    const double v__k121 = v__k88 + v__k96;
+    const double v__k122 = v__k91 + v__k92;
+    const double v__k123 = v__k90 + v__k92;
+    const double v__k124 = (v_d*v_d*v_d*v_d);
+    const double v__k125 = (v_l1*v_l1*v_l1*v_l1);
+    const double v__k126 = (v_l2*v_l2*v_l2*v_l2);
+    const double v__k127 = (v_l3*v_l3*v_l3*v_l3);
+    const double v__k128 = (v_l4*v_l4*v_l4*v_l4);
+    const double v__k129 = (v_lq4d*v_lq4d*v_lq4d*v_lq4d);
+    const double v__k130 = 2.0*v__k124;
+    const double v__k131 = 2.0*v__k125;
+    const double v__k132 = 2.0*v__k126;
+    const double v__k133 = 2.0*v__k127;
+    const double v__k134 = 2.0*v__k128;
+    const double v__k135 = 2.0*v__k129;
+    const double v__k136 = v__k2*v__k53;
+    const double v__k137 = -12.0*v__k136;
+    const double v__k138 = v__k4*v__k49;
+    const double v__k139 = -12.0*v__k138;
+    const double v__k140 = v__k38*v_d;
+    const double v__k141 = (v_lq4d*v_lq4d*v_lq4d);
+    const double v__k142 = v__k141*v_d;
+    const double v__k143 = -8.0*v__k142;
+    const double v__k144 = -v__k141*v__k57;
+    const double v__k145 = (v_d*v_d*v_d);
+    const double v__k146 = v__k145*v__k65;
+    const double v__k147 = -v__k36*v_lq4d;
+    const double v__k148 = v__k145*v_lq4d;
+    const double v__k149 = -8.0*v__k148;
+    const double v__k150 = -4.0*v__k142;
+    const double v__k151 = -4.0*v__k148;
+    const double v__k152 = 4.0*v__k0;
+    const double v__k153 = -v__k152*v__k49;
+    const double v__k154 = -v__k152*v__k53;
+    const double v__k155 = 4.0*v__k49;
+    const double v__k156 = -v__k155*v__k2;
+    const double v__k157 = -v__k155*v__k53;
+    const double v__k158 = -v__k155*v__k6;
+    const double v__k159 = 4.0*v__k53;
+    const double v__k160 = -v__k159*v__k4;
+    const double v__k161 = -v__k159*v__k6;
+    const double v__k162 = 2.0*v__k0;
+    const double v__k163 = -v__k162*v__k49;
+    const double v__k164 = -v__k162*v__k53;
+    const double v__k165 = 2.0*v__k2;
+    const double v__k166 = -v__k165*v__k49;
+    const double v__k167 = -v__k165*v__k4;
+    const double v__k168 = 2.0*v__k49;
+    const double v__k169 = -v__k168*v__k53;
+    const double v__k170 = -v__k168*v__k6;
+    const double v__k171 = 2.0*v__k53;
+    const double v__k172 = -v__k171*v__k4;
+    const double v__k173 = -v__k171*v__k6;
+    const double v__k174 = v__k162*v__k2;
+    const double v__k175 = v__k162*v__k4;
+    const double v__k176 = 2.0*v__k136;
+    const double v__k177 = v__k165*v__k6;
+    const double v__k178 = 2.0*v__k138;
+    const double v__k179 = v__k4*v__k6;
+    const double v__k180 = 2.0*v__k179;
+    const double v__k181 = v__k152*v__k2;
+    const double v__k182 = v__k152*v__k4;
+    const double v__k183 = 4.0*v__k124;
+    const double v__k184 = 4.0*v__k136;
+    const double v__k185 = v__k2*v__k6;
+    const double v__k186 = 4.0*v__k185;
+    const double v__k187 = 4.0*v__k125;
+    const double v__k188 = 4.0*v__k138;
+    const double v__k189 = 4.0*v__k126;
+    const double v__k190 = 4.0*v__k179;
+    const double v__k191 = 4.0*v__k127;
+    const double v__k192 = 4.0*v__k128;
+    const double v__k193 = 4.0*v__k129;
+    const double v__k194 = v__k0*v__k6;
+    const double v__k195 = 6.0*v__k194;
+    const double v__k196 = v__k36*v_d;
+    const double v__k197 = v__k145*v__k57;
+    const double v__k198 = 12.0*v__k194;
+    const double v__k199 = v__k2*v__k4;
+    const double v__k200 = 12.0*v__k199;
+    const double v__k201 = 20.0*v__k0;
+    const double v__k202 = v__k2*v__k201;
+    const double v__k203 = v__k201*v__k4;
+    const double v__k204 = 20.0*v__k185;
+    const double v__k205 = 20.0*v__k179;
+    const double v__k206 = 40.0*v__k17;
+    const double v__k207 = -v__k2*v__k206;
+    const double v__k208 = -v__k206*v__k4;
+    const double v__k209 = 24.0*v_l3;
+    const double v__k210 = v__k6*v_d;
+    const double v__k211 = v__k209*v__k210;
+    const double v__k212 = 24.0*v_l1;
+    const double v__k213 = v__k0*v_lq4d;
+    const double v__k214 = -v__k212*v__k213;
+    const double v__k215 = -24.0*v__k136;
+    const double v__k216 = -24.0*v__k138;
+    const double v__k217 = v__k41*v_d;
+    const double v__k218 = -16.0*v__k142;
+    const double v__k219 = v__k41*v_l1;
+    const double v__k220 = -v__k141*v__k77;
+    const double v__k221 = v__k40*v_l3;
+    const double v__k222 = v__k145*v__k81;
+    const double v__k223 = -v__k40*v_lq4d;
+    const double v__k224 = -16.0*v__k148;
+    const double v__k225 = -v__k59*v_d;
+    const double v__k226 = -v__k63*v_d;
+    const double v__k227 = v__k68*v_d;
+    const double v__k228 = 8.0*v__k17;
+    const double v__k229 = -v__k2*v__k228;
+    const double v__k230 = -v__k228*v__k4;
+    const double v__k231 = -v__k61*v_lq4d;
+    const double v__k232 = v__k70*v_lq4d;
+    const double v__k233 = v__k72*v_lq4d;
+    const double v__k234 = 8.0*v__k0;
+    const double v__k235 = -v__k234*v__k49;
+    const double v__k236 = -v__k234*v__k53;
+    const double v__k237 = 8.0*v__k49;
+    const double v__k238 = -v__k2*v__k237;
+    const double v__k239 = -v__k237*v__k53;
+    const double v__k240 = -v__k237*v__k6;
+    const double v__k241 = 8.0*v__k53;
+    const double v__k242 = -v__k241*v__k4;
+    const double v__k243 = -v__k241*v__k6;
+    const double v__k244 = 4.0*v__k17;
+    const double v__k245 = -v__k2*v__k244;
+    const double v__k246 = -v__k244*v__k4;
+    const double v__k247 = v__k155*v__k17;
+    const double v__k248 = v__k159*v__k17;
+    const double v__k249 = v__k61*v_d;
+    const double v__k250 = v__k17*v__k237;
+    const double v__k251 = v__k17*v__k241;
+    const double v__k252 = v__k59*v_lq4d;
+    const double v__k253 = v__k63*v_lq4d;
+    const double v__k254 = v__k40*v_d;
+    const double v__k255 = v__k145*v__k77;
+    const double v__k256 = v__k210*v__k212;
+    const double v__k257 = 24.0*v__k194;
+    const double v__k258 = 40.0*v__k0;
+    const double v__k259 = v__k2*v__k258;
+    const double v__k260 = v__k258*v__k4;
+    const double v__k261 = 40.0*v__k185;
+    const double v__k262 = 40.0*v__k179;
+    const double v__k263 = 56.0*v__k199;
+    const double v__k264 = 80.0*v_d;
+    const double v__k265 = v__k264*v__k86;
+    const double v__k266 = 80.0*v__k17;
+    const double v__k267 = -v__k2*v__k266;
+    const double v__k268 = -v__k266*v__k4;
+    const double v__k269 = 80.0*v_lq4d;
+    const double v__k270 = -v__k269*v__k84;
+    const double v__k271 = 48.0*v__k210;
+    const double v__k272 = v__k271*v_l3;
+    const double v__k273 = 48.0*v__k20;
+    const double v__k274 = v__k0*v__k273;
+    const double v__k275 = v__k273*v__k6;
+    const double v__k276 = 48.0*v__k213;
+    const double v__k277 = -v__k276*v_l1;
+    const double v__k278 = -v__k51*v_d;
+    const double v__k279 = -v__k78*v_d;
+    const double v__k280 = v__k82*v_lq4d;
+    const double v__k281 = v__k55*v_lq4d;
+    const double v__k282 = 16.0*v__k17;
+    const double v__k283 = v__k282*v__k49;
+    const double v__k284 = v__k282*v__k53;
+    const double v__k285 = 16.0*v__k20;
+    const double v__k286 = v__k51*v_lq4d;
+    const double v__k287 = v__k78*v_lq4d;
+    const double v__k288 = v__k271*v_l1;
+    const double v__k289 = v__k264*v__k84;
+    const double v__k290 = v__k130 + v__k131 + v__k132 + v__k133 + v__k134 + v__k135 + v__k143 + v__k149 + v__k153 + v__k154 + v__k156 + v__k157 + v__k158 + v__k160 + v__k161 + v__k198 + v__k200 + v__k250 + v__k251;
+    const double v__s0 = v__k1;
+    const double v__s1 = v__k3;
+    const double v__s2 = v__k5;
+    const double v__s3 = v__k7;
+    const double v__s4 = v__k8;
+    const double v__s5 = v__k9;
+    const double v__s6 = v__k10;
+    const double v__s7 = v__k11;
+    const double v__s8 = -v__k13;
+    const double v__s9 = v__k14;
+    const double v__s10 = v__k16;
+    const double v__s11 = v__k19;
+    const double v__s12 = v__k21;
+    const double v__s13 = v__k22;
+    const double v__s14 = v__k15*v_l3;
+    const double v__s15 = v__k23;
+    const double v__s16 = v__k24;
+    const double v__s17 = v__k25;
+    const double v__s18 = v__k26;
+    const double v__s19 = -v__k28;
+    const double v__s20 = v__k29;
+    const double v__s21 = -128.0*v__k20;
+    const double v__s22 = v__k31;
+    const double v__s23 = v__k32;
+    const double v__s24 = v__k33;
+    const double v__s25 = v__k30*v_l3;
+    const double v__s26 = v__k32 + v__k34;
+    const double v__s27 = v__k21 + v__k34;
+    const double v__s28 = v__k16 + v__k22;
+    const double v__s29 = -v__k13 + 64.0*v_l3*v_lq4d;
+    const double v__s30 = v__k10 + v__k11 + v__k14 + v__k8 + v__k9;
+    const double v__s31 = v__k23 + v__k24 + v__k25 + v__k26 + v__k29;
+    const double v__s32 = -v__k28 + 128.0*v_l3*v_lq4d;
+    const double v__s33 = v__k31 + v__k33;
+    const double v__s34 = -v__k36;
+    const double v__s35 = v__k39;
+    const double v__s36 = v__k36;
+    const double v__s37 = v__k38;
+    const double v__s38 = v__k40;
+    const double v__s39 = v__k41;
+    const double v__s40 = v__k43;
+    const double v__s41 = -v__k44;
+    const double v__s42 = v__k46;
+    const double v__s43 = v__k48;
+    const double v__s44 = v__k52;
+    const double v__s45 = v__k56;
+    const double v__s46 = -v__k40;
+    const double v__s47 = -v__k41;
+    const double v__s48 = -v__k58;
+    const double v__s49 = v__k60;
+    const double v__s50 = v__k62;
+    const double v__s51 = -v__k63;
+    const double v__s52 = -v__k64;
+    const double v__s53 = v__k67;
+    const double v__s54 = v__k69;
+    const double v__s55 = v__k71;
+    const double v__s56 = v__k73;
+    const double v__s57 = v__k75;
+    const double v__s58 = v__k58;
+    const double v__s59 = v__k59;
+    const double v__s60 = v__k61;
+    const double v__s61 = v__k63;
+    const double v__s62 = v__k64;
+    const double v__s63 = v__k66;
+    const double v__s64 = v__k68;
+    const double v__s65 = v__k70;
+    const double v__s66 = v__k72;
+    const double v__s67 = v__k74;
+    const double v__s68 = v__k76;
+    const double v__s69 = v__k78;
+    const double v__s70 = v__k79;
+    const double v__s71 = v__k80;
+    const double v__s72 = v__k82;
+    const double v__s73 = v__k83;
+    const double v__s74 = v__k44;
+    const double v__s75 = v__k42;
+    const double v__s76 = v__k47;
+    const double v__s77 = v__k45;
+    const double v__s78 = v__k85;
+    const double v__s79 = v__k87;
+    const double v__s80 = -v__k88;
+    const double v__s81 = -v__k89;
+    const double v__s82 = v__k91;
+    const double v__s83 = -v__k92;
+    const double v__s84 = v__k94;
+    const double v__s85 = v__k96;
+    const double v__s86 = -v__k85;
+    const double v__s87 = -v__k87;
+    const double v__s88 = v__k98;
+    const double v__s89 = v__k100;
+    const double v__s90 = v__k102;
+    const double v__s91 = v__k104;
+    const double v__s92 = v__k106;
+    const double v__s93 = v__k108;
+    const double v__s94 = -v__k76;
+    const double v__s95 = -v__k78;
+    const double v__s96 = -v__k79;
+    const double v__s97 = -v__k80;
+    const double v__s98 = -v__k82;
+    const double v__s99 = -v__k83;
+    const double v__s100 = v__k105;
+    const double v__s101 = v__k107;
+    const double v__s102 = v__k51;
+    const double v__s103 = v__k55;
+    const double v__s104 = v__k97;
+    const double v__s105 = v__k103;
+    const double v__s106 = v__k89;
+    const double v__s107 = v__k88;
+    const double v__s108 = v__k90;
+    const double v__s109 = v__k92;
+    const double v__s110 = v__k95;
+    const double v__s111 = v__k93;
+    const double v__s112 = v__k99;
+    const double v__s113 = v__k101;
+    const double v__s114 = v__k110;
+    const double v__s115 = -v__k111;
+    const double v__s116 = v__k111;
+    const double v__s117 = v__k114;
+    const double v__s118 = -v__k115;
+    const double v__s119 = -v__k116;
+    const double v__s120 = -v__k117;
+    const double v__s121 = v__k118;
+    const double v__s122 = v__k119;
+    const double v__s123 = -v__k110;
+    const double v__s124 = -v__k118;
+    const double v__s125 = -v__k119;
+    const double v__s126 = v__k117;
+    const double v__s127 = v__k116;
+    const double v__s128 = v__k115;
+    const double v__s129 = -v__k114;
+    const double v__s130 = v__k120;
+    const double v__s131 = v__k121;
+    const double v__s132 = -v__k122;
+    const double v__s133 = v__k123;
+    const double v__s134 = v__k122;
+    const double v__s135 = -v__k121;
+    const double v__s136 = -v__k120;
+    const double v__s137 = -v__k123;
+    const double v__s138 = v__k124;
+    const double v__s139 = v__k125;
+    const double v__s140 = v__k126;
+    const double v__s141 = v__k127;
+    const double v__s142 = v__k128;
+    const double v__s143 = v__k129;
+    const double v__s144 = v__k130;
+    const double v__s145 = v__k131;
+    const double v__s146 = v__k132;
+    const double v__s147 = v__k133;
+    const double v__s148 = v__k134;
+    const double v__s149 = v__k135;
+    const double v__s150 = v__k137;
+    const double v__s151 = v__k139;
+    const double v__s152 = -v__k140;
+    const double v__s153 = v__k143;
+    const double v__s154 = v__k144;
+    const double v__s155 = -v__k146;
+    const double v__s156 = v__k147;
+    const double v__s157 = v__k149;
+    const double v__s158 = v__k150;
+    const double v__s159 = v__k151;
+    const double v__s160 = v__k153;
+    const double v__s161 = v__k154;
+    const double v__s162 = v__k156;
+    const double v__s163 = v__k157;
+    const double v__s164 = v__k158;
+    const double v__s165 = v__k160;
+    const double v__s166 = v__k161;
+    const double v__s167 = v__k163;
+    const double v__s168 = v__k164;
+    const double v__s169 = v__k166;
+    const double v__s170 = v__k167;
+    const double v__s171 = v__k169;
+    const double v__s172 = v__k170;
+    const double v__s173 = v__k172;
+    const double v__s174 = v__k173;
+    const double v__s175 = v__k174;
+    const double v__s176 = v__k175;
+    const double v__s177 = v__k176;
+    const double v__s178 = v__k177;
+    const double v__s179 = v__k178;
+    const double v__s180 = v__k180;
+    const double v__s181 = v__k181;
+    const double v__s182 = v__k182;
+    const double v__s183 = v__k183;
+    const double v__s184 = v__k184;
+    const double v__s185 = v__k186;
+    const double v__s186 = v__k187;
+    const double v__s187 = v__k188;
+    const double v__s188 = v__k189;
+    const double v__s189 = v__k190;
+    const double v__s190 = v__k191;
+    const double v__s191 = v__k192;
+    const double v__s192 = v__k193;
+    const double v__s193 = v__k195;
+    const double v__s194 = v__k196;
+    const double v__s195 = v__k197;
+    const double v__s196 = v__k141*v__k65;
+    const double v__s197 = v__k38*v_lq4d;
+    const double v__s198 = v__k198;
+    const double v__s199 = v__k200;
+    const double v__s200 = v__k202;
+    const double v__s201 = v__k203;
+    const double v__s202 = v__k204;
+    const double v__s203 = v__k205;
+    const double v__s204 = v__k207;
+    const double v__s205 = v__k208;
+    const double v__s206 = -v__k211;
+    const double v__s207 = v__k214;
+    const double v__s208 = v__k215;
+    const double v__s209 = v__k216;
+    const double v__s210 = -v__k217;
+    const double v__s211 = v__k218;
+    const double v__s212 = -v__k219;
+    const double v__s213 = v__k220;
+    const double v__s214 = -v__k221;
+    const double v__s215 = -v__k222;
+    const double v__s216 = v__k223;
+    const double v__s217 = v__k224;
+    const double v__s218 = v__k225;
+    const double v__s219 = v__k226;
+    const double v__s220 = -v__k227;
+    const double v__s221 = v__k229;
+    const double v__s222 = v__k230;
+    const double v__s223 = v__k231;
+    const double v__s224 = -v__k232;
+    const double v__s225 = -v__k233;
+    const double v__s226 = v__k235;
+    const double v__s227 = v__k236;
+    const double v__s228 = v__k238;
+    const double v__s229 = v__k239;
+    const double v__s230 = v__k240;
+    const double v__s231 = v__k242;
+    const double v__s232 = v__k243;
+    const double v__s233 = v__k245;
+    const double v__s234 = v__k246;
+    const double v__s235 = v__k247;
+    const double v__s236 = v__k248;
+    const double v__s237 = v__k249;
+    const double v__s238 = v__k70*v_d;
+    const double v__s239 = v__k72*v_d;
+    const double v__s240 = v__k250;
+    const double v__s241 = v__k251;
+    const double v__s242 = v__k252;
+    const double v__s243 = v__k253;
+    const double v__s244 = v__k68*v_lq4d;
+    const double v__s245 = v__k254;
+    const double v__s246 = v__k255;
+    const double v__s247 = v__k141*v__k81;
+    const double v__s248 = v__k41*v_lq4d;
+    const double v__s249 = v__k256;
+    const double v__s250 = v__k209*v__k213;
+    const double v__s251 = v__k257;
+    const double v__s252 = v__k259;
+    const double v__s253 = v__k260;
+    const double v__s254 = v__k261;
+    const double v__s255 = v__k262;
+    const double v__s256 = v__k263;
+    const double v__s257 = -v__k265;
+    const double v__s258 = v__k267;
+    const double v__s259 = v__k268;
+    const double v__s260 = v__k270;
+    const double v__s261 = -v__k272;
+    const double v__s262 = -v__k274;
+    const double v__s263 = -v__k275;
+    const double v__s264 = v__k277;
+    const double v__s265 = v__k278;
+    const double v__s266 = v__k279;
+    const double v__s267 = -v__k280;
+    const double v__s268 = -v__k281;
+    const double v__s269 = v__k82*v_d;
+    const double v__s270 = v__k55*v_d;
+    const double v__s271 = v__k283;
+    const double v__s272 = v__k284;
+    const double v__s273 = v__k285*v__k49;
+    const double v__s274 = v__k285*v__k53;
+    const double v__s275 = v__k286;
+    const double v__s276 = v__k287;
+    const double v__s277 = v__k288;
+    const double v__s278 = v__k276*v_l3;
+    const double v__s279 = v__k289;
+    const double v__s280 = v__k269*v__k86;
+    const double v__s281 = 96.0*v__k17*v__k20;
+    const double v__s282 = v__k124 + v__k125 + v__k126 + v__k127 + v__k128 + v__k129 + v__k150 + v__k151 + v__k163 + v__k164 + v__k166 + v__k167 + v__k169 + v__k170 + v__k172 + v__k173 + v__k174 + v__k175 + v__k176 + v__k177 + v__k178 + v__k180 + v__k195 + v__k245 + v__k246 + v__k247 + v__k248;
+    const double v__s283 = v__k137 + v__k182 + v__k188 + v__k190 + v__k202 + v__k204 + v__k207 + v__k230 + v__k290;
+    const double v__s284 = v__k139 + v__k181 + v__k184 + v__k186 + v__k203 + v__k205 + v__k208 + v__k229 + v__k290;
+    const double v__s285 = 24.0*v__k0*v_l3*v_lq4d - v__k140 + 8.0*v__k141*v_l3 - v__k146 + 8.0*v__k2*v_l3*v_lq4d - v__k211 - v__k227 - v__k232 - v__k233 + 8.0*v__k37*v_lq4d + 8.0*v__k49*v_d*v_l3 + 8.0*v__k53*v_d*v_l3;
+    const double v__s286 = v__k144 + v__k147 + v__k196 + v__k197 + v__k214 + v__k225 + v__k226 + v__k231 + v__k249 + v__k252 + v__k253 + v__k256;
+    const double v__s287 = v__k183 + v__k187 + v__k189 + v__k191 + v__k192 + v__k193 + v__k215 + v__k216 + v__k218 + v__k224 + v__k235 + v__k236 + v__k238 + v__k239 + v__k240 + v__k242 + v__k243 + v__k257 + v__k259 + v__k260 + v__k261 + v__k262 + v__k263 + v__k267 + v__k268 + v__k283 + v__k284;
+    const double v__s288 = 48.0*v__k0*v_l3*v_lq4d + 16.0*v__k141*v_l3 + 80.0*v__k2*v_l3*v_lq4d - v__k217 - v__k222 - v__k265 - v__k272 - v__k280 - v__k281 + 16.0*v__k37*v_lq4d + 16.0*v__k49*v_d*v_l3 + 16.0*v__k53*v_d*v_l3;
+    const double v__s289 = -v__k219 - v__k221 - v__k274 - v__k275 + 16.0*v__k49*v_l1*v_l3 + 16.0*v__k53*v_l1*v_l3 + 96.0*v_d*v_l1*v_l3*v_lq4d;
+    const double v__s290 = v__k220 + v__k223 + v__k254 + v__k255 + v__k270 + v__k277 + v__k278 + v__k279 + v__k286 + v__k287 + v__k288 + v__k289;
+    const double v__c0 = v__s28*v_t1;
+    const double v__c1 = v__s29*v_w1;
+    const double v__c2 = v__s21*v_t1;
+    const double v__c3 = (v_t1*v_t1*v_t1*v_t1);
+    const double v__c4 = (v_w1*v_w1*v_w1*v_w1);
+    const double v__c5 = (v_t1*v_t1*v_t1);
+    const double v__c6 = v__s28*v__c5;
+    const double v__c7 = (v_w1*v_w1*v_w1);
+    const double v__c8 = v__s29*v__c7;
+    const double v__c9 = (v_t1*v_t1);
+    const double v__c10 = v__s30*v__c9;
+    const double v__c11 = (v_w1*v_w1);
+    const double v__c12 = v__s30*v__c11;
+    const double v__c13 = v__s21*v__c5;
+    const double v__c14 = v__s32*v__c9;
+    const double v__c15 = v__s33*v__c11;
+    const double v__c16 = v__c3*v__c4;
+    const double v__c17 = v__c11*v__c9;
+    const double v__c18 = v_t1*v_w1;
+    const double v__c19 = v__c11*v_t1;
+    const double v__c20 = v__c7*v_t1;
+    const double v__c21 = v__c5*v_w1;
+    const double v__c22 = v__c9*v_w1;
+    const double v__c23 = v__c7*v__c9;
+    const double v__c24 = v__c5*v__c7;
+    const double v__c25 = v__c11*v__c5;
+    const double v__c26 = v__s285*v_w1;
+    const double v__c27 = v__s286*v_t1;
+    const double v__c28 = v__s282*v__c3;
+    const double v__c29 = v__s283*v__c9;
+    const double v__c30 = v__s284*v__c11;
+    const double v__c31 = v__s285*v__c7;
+    const double v__c32 = v__s286*v__c5;
+    out[0] = v__c0*v__c4 + v__c0 + v__c1*v__c3 + v__c1 + v__c10*v__c4 + v__c10 + v__c12*v__c3 + v__c12 + v__c13*v__c7 + v__c13*v_w1 + v__c14*v__c7 + v__c14*v_w1 + v__c15*v__c5 + v__c15*v_t1 + v__s26*v__c16 + v__s31*v__c17 + v__c2*v__c7 + v__c2*v_w1 + v__c3*v__c8 + v__s27*v__c3 + v__c4*v__c6 + v__s27*v__c4 + v__c6 + v__c8 + v__s26;
+    out[1] = v__s124*v__c11*v__c3 + v__s121*v__c11 + v__s123*v__c16 + v__s137*v__c18 + v__s130*v__c19 + v__s132*v__c20 + v__s134*v__c21 + v__s135*v__c22 + v__s131*v__c23 + v__s133*v__c24 + v__s136*v__c25 + v__s127*v__c3*v__c7 + v__s115*v__c3 + v__s126*v__c3*v_w1 + v__s129*v__c4*v__c5 + v__s125*v__c4*v__c9 + v__s116*v__c4 + v__s128*v__c4*v_t1 + v__s118*v__c5 + v__s120*v__c7 + v__s122*v__c9 + v__s114 + v__s117*v_t1 + v__s119*v_w1;
+    out[2] = v__s287*v__c17 + v__s289*v__c18 + v__s290*v__c19 + v__s289*v__c20 + v__s289*v__c21 + v__s288*v__c22 + v__s288*v__c23 + v__s289*v__c24 + v__s290*v__c25 + v__c26*v__c3 + v__c26 + v__c27*v__c4 + v__c27 + v__c28*v__c4 + v__c28 + v__c29*v__c4 + v__c29 + v__c3*v__c30 + v__c3*v__c31 + v__c30 + v__c31 + v__c32*v__c4 + v__c32 + v__s282*v__c4 + v__s282;
+}
+/* _fkchart1_step3_yd1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step3_yd1_shape[4] = {18, 3, 0, 811};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step3_yd1_numbers[] = {-1};
+void bonered_rows__fkchart1_step3_yd1(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step3_yd1(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients (A, B, C) of the generator solved for yd2 (from lex basis of the lower planar mechanism). */
+BF_INLINE void _fkchart1_step4_yd2(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_yu3, double v_yu1, double v_yd1, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    const double v__k0 = (v_l1*v_l1);
+    const double v__k1 = (v_l4*v_l4);
+    const double v__k2 = -(v_l2*v_l2);
+    const double v__k3 = -(v_l3*v_l3);
+    const double v__k4 = -(v_lq4d*v_lq4d);
+    const double v__k5 = v_d*v_lq4d;
+    const double v__k6 = 4.0*v_l3;
+    const double v__k7 = -v__k6*v_lq4d;
+    const double v__k8 = 2.0*v_d;
+    const double v__k9 = v__k8*v_l3;
+    const double v__k10 = 4.0*v_l1;
+    const double v__k11 = v__k10 - v__k6;
+    const double v__k12 = v__k10 + v__k6;
+    const double v__s0 = v_d - v_lq4d;
+    const double v__s1 = v__k0;
+    const double v__s2 = v__k1;
+    const double v__s3 = v__k2;
+    const double v__s4 = v__k3;
+    const double v__s5 = v__k4;
+    const double v__s6 = v__k5;
+    const double v__s7 = v__k7;
+    const double v__s8 = v__k8*v_l1;
+    const double v__s9 = v__k9;
+    const double v__s10 = v__k0 + v__k1 + v__k2 + v__k3 + v__k4 + v__k5;
+    const double v__s11 = v__k7 + v__k9;
+    const double v__s12 = v__k11;
+    const double v__s13 = -v__k12;
+    const double v__s14 = v__k12;
+    const double v__s15 = -v__k11;
+    const double v__c0 = 4.0*v__s0;
+    const double v__c1 = 8.0*v_l1*v_t1;
+    const double v__c2 = 8.0*v_l3*v_w1;
+    const double v__c3 = (v_t1*v_t1);
+    const double v__c4 = v__c0*v__c3;
+    const double v__c5 = (v_w1*v_w1);
+    const double v__c6 = v__s11*v_w1;
+    const double v__c7 = v__s8*v_t1;
+    const double v__c8 = v__s10*v__c3;
+    const double v__c9 = v__c3*v_yd1;
+    out[0] = 0.0;
+    out[1] = v__c0*v__c5 + v__c0 + v__c1*v__c5 + v__c1 - v__c2*v__c3 - v__c2 + v__c4*v__c5 + v__c4;
+    out[2] = v__c3*v__c6 + v__c5*v__c7 + v__c5*v__c8 + v__s15*v__c5*v__c9 + v__s10*v__c5 + v__s14*v__c5*v_yd1 + v__c6 + v__c7 + v__c8 + v__s13*v__c9 + v__s10 + v__s12*v_yd1;
+}
+/* _fkchart1_step4_yd2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fkchart1_step4_yd2_shape[4] = {19, 3, 1, 71};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step4_yd2_numbers[] = {0};
+void bonered_rows__fkchart1_step4_yd2(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[3];
+        _fkchart1_step4_yd2(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], o);
+        for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major). */
+BF_INLINE void _fk_newton(double v_yu2, double v_yu3, double v_yu1, double v_yd2, double v_yd1, double v_t1, double v_w1, double v_q4, double v_q5, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
+{
+    const double v__k0 = (v_d*v_d);
+    const double v__k1 = -4.0*(v_l2*v_l2);
+    const double v__k2 = 4.0*(v_l1*v_l1);
+    const double v__k3 = 8.0*v_d;
+    const double v__k4 = -4.0*(v_l4*v_l4);
+    const double v__k5 = 4.0*(v_l3*v_l3);
+    const double v__k6 = 4.0*(v_lq4d*v_lq4d);
+    const double v__k7 = v__k3*v_l3;
+    const double v__k8 = -4.0*v_d*v_lq4d;
+    const double v__s0 = -(v_ld4*v_ld4) + (v_lq5*v_lq5);
+    const double v__s1 = v__k0;
+    const double v__s2 = v__k1;
+    const double v__s3 = v__k2;
+    const double v__s4 = v__k3*v_l1;
+    const double v__s5 = v__k0 + v__k1 + v__k2;
+    const double v__s6 = v__k4;
+    const double v__s7 = v__k5;
+    const double v__s8 = v__k6;
+    const double v__s9 = -v__k7;
+    const double v__s10 = v__k8;
+    const double v__s11 = 16.0*v_l3*v_lq4d;
+    const double v__s12 = v__k0 + v__k4 + v__k5 + v__k6 + v__k8;
+    const double v__s13 = -v__k7 + 16.0*v_l3*v_lq4d;
+    const double v__s14 = -v__k3 + 16.0*v_lq4d;
+    const double v__c0 = 4.0*v_lq5;
+    const double v__c1 = (v_t1*v_t1);
+    const double v__c2 = 8.0*v_d;
+    const double v__c3 = v__c2*v_yd2;
+    const double v__c4 = 16.0*v_l1;
+    const double v__c5 = v__c4*v_yd1;
+    const double v__c6 = 16.0*(v_yd1*v_yd1);
+    const double v__c7 = 16.0*(v_yd2*v_yd2);
+    const double v__c8 = 32.0*v_yd2;
+    const double v__c9 = v_l1*v_t1;
+    const double v__c10 = v__c6 + v__c7;
+    const double v__c11 = (v_w1*v_w1);
+    const double v__c12 = v__s14*v_yd2;
+    const double v__c13 = 16.0*v_l3;
+    const double v__c14 = v__c13*v_yd1;
+    const double v__c15 = v_l3*v_w1;
+    const double v__c16 = 32.0*v_yd1;
+    out[0] = v_Dz + 2.0*v_yu3;
+    out[1] = v_q5 + 2.0*v_yu2;
+    out[2] = v__c0*v_yu1 + v__s0 + (v_q4*v_q4) - 2.0*v_q4*v_q5 + (v_q5*v_q5) + 4.0*(v_yu1*v_yu1);
+    out[3] = v__c1*v__c3 - v__c1*v__c5 + v__c1*v__c6 + v__c1*v__c7 + v__s5*v__c1 + v__c10 + v__c3 + v__c5 + v__c8*v__c9 + v__s4*v_t1 + v__s5;
+    out[4] = v__c10 + v__c11*v__c12 - v__c11*v__c14 + v__c11*v__c6 + v__c11*v__c7 + v__s12*v__c11 + v__c12 + v__c14 + v__c15*v__c8 + v__s12 + v__s13*v_w1;
+    out[5] = 0.0;
+    out[6] = 2.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 2.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+    out[16] = 0.0;
+    out[17] = v__c0 + 8.0*v_yu1;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = v__c1*v__c2 + v__c1*v__c8 + v__c2 + v__c8 + 32.0*v__c9;
+    out[24] = v__c1*v__c16 - v__c1*v__c4 + v__c16 + v__c4;
+    out[25] = 0.0;
+    out[26] = 0.0;
+    out[27] = 0.0;
+    out[28] = v__c11*v__c8 + v__s14*v__c11 + 32.0*v__c15 + v__c8 + v__s14;
+    out[29] = -v__c11*v__c13 + v__c11*v__c16 + v__c13 + v__c16;
+}
+/* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__fk_newton_shape[4] = {20, 30, 20, 131};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fk_newton_numbers[] = {5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 19, 20, 21, 22, 25, 26, 27};
+void bonered_rows__fk_newton(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[30];
+        _fk_newton(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], in[12][i * step[12]], in[13][i * step[13]], in[14][i * step[14]], in[15][i * step[15]], in[16][i * step[16]], in[17][i * step[17]], in[18][i * step[18]], in[19][i * step[19]], o);
+        for (int m = 0; m < 30; m++)
+            out[m][i] = o[m];
+    }
+}
+
+#endif
 #if !defined(BF_PART) || BF_PART == 1
 BF_INLINE void block_tail(int m, double (*restrict P)[BF_BLOCK], double (*restrict S)[BF_BLOCK],
                        const double *const *restrict R, const int *restrict ST_in,

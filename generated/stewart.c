@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: aa25e7fc757a0dcc9c17bf209a12efeb3c48265cbc7611ba6df34ae2e436f28d
+ * Derivation hash: dff65a535bc3383c075bc84f42e8d228212c074ee572158d685f2056907fc4ed
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "aa25e7fc757a0dcc9c17bf209a12efeb3c48265cbc7611ba6df34ae2e436f28d";
+const char bonered_derivation_hash[] = "dff65a535bc3383c075bc84f42e8d228212c074ee572158d685f2056907fc4ed";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -287,3 +287,77 @@ def test_elementary_functions_several_c_kernels_take_are_computed_once():
     source, _ = c_function(k2, f, found[1])
     assert "sin(v_q)" in source and "tan(" in source  # tan(alpha/2 + q) stays
     assert "cos(v_beta)" in c_function(k1, f, found[0])[0]
+
+
+FK_NAMES = ["planar_tripod", "tripod_planar", "pro_hep_lct", "urrh_rcm", "lamina_milling"]
+
+
+def _bits_equal(a, b):
+    """The same float64 bits everywhere (NaN as NaN, of any sign)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    both = np.isnan(a) & np.isnan(b)
+    return a.shape == b.shape and np.array_equal(np.where(both, 0.0, a).view(np.uint64),
+                                                 np.where(both, 0.0, b).view(np.uint64))
+
+
+@pytest.mark.parametrize("name", FK_NAMES)
+def test_compiled_fk_kernels_are_the_numpy_kernels_to_the_bit(name):
+    """Every kernel forward kinematics evaluates through the library (the back-substitution
+    steps of every chart and the Newton system: ``bonered_rows_<name>``) returns the numpy
+    kernel's numbers bit for bit: the same program, operation for operation (integer powers
+    as products in both, SMALL_POWER), on arguments from 1e-3 to 1e3 in magnitude and of
+    both signs, arrays and numbers mixed; its numbers are numbers where numpy's are."""
+    m = _module(name)
+    fast, spec = m._MODEL.fast, m._MODEL.fk
+    kernels = [k for rows, _ in ((spec.steps, None), *spec.charts) for _, k, _ in rows]
+    kernels += [spec.newton] if spec.newton is not None else []
+    assert kernels
+    rng = np.random.default_rng(15)
+    par = [float(v) for v in m.PARAMETERS.values()]
+    twins = 0
+    for kern in kernels:
+        twin = fast.rows(kern)
+        if twin is None:  # numpy's cost per call below the twin's: numpy
+            assert m.OPERATIONS[kern.__name__] < compiled.ROW_KERNEL_MIN_OPERATIONS
+            continue
+        twins += 1
+        n = twin.n_in - len(par)
+        args = [rng.choice([-1, 1], 300) * 10.0 ** rng.uniform(-3, 3, 300) for _ in range(n)]
+        args[0] = args[0][:1]  # broadcast from one row
+        for a, b in zip(kern(*args, *par), twin(*args, *par)):
+            assert isinstance(b, float) == isinstance(a, float), kern.__name__
+            assert _bits_equal(np.broadcast_to(a, (300,)), np.broadcast_to(b, (300,))), \
+                kern.__name__
+    assert twins >= 2
+
+
+@pytest.mark.parametrize("name", FK_NAMES)
+def test_compiled_fk_is_numpy_fk_to_the_bit(name):
+    """fk and fk_status through the compiled kernels: the same poses and statuses as numpy,
+    bit for bit, on configurations from the IK, perturbed ones (some modes not real), NaN
+    joints, one configuration at a time and a leading shape of two axes."""
+    m = _module(name)
+    poses = _poses(name, 300, seed=9)
+    q = np.concatenate([m.ik(poses, mode=k, limits=False) for k in range(min(m.MODES, 4))])
+    q = q[np.isfinite(q).all(axis=-1)][:300]
+    rng = np.random.default_rng(9)
+    q = np.concatenate([q, q * rng.uniform(0.9, 1.1, q.shape), np.full((2, q.shape[1]),
+                                                                        np.nan)])
+    for batch in (q, q[:1], q[-1], q[:24].reshape(4, 6, -1)):
+        a, sa = m.fk(batch, fast=False), m.fk_status(batch, fast=False)
+        b, sb = m.fk(batch, fast=True), m.fk_status(batch, fast=True)
+        assert _bits_equal(a, b) and np.array_equal(sa, sb)
+    assert (sa == st.OK).any()
+
+
+def test_compiled_fk_switches():
+    """``fast`` of fk as of ik: a bad value is refused, True with parameters per
+    configuration (numpy only) is a clear error, None then takes numpy."""
+    m = _module("urrh_rcm")
+    q = m.ik(np.asarray(m.HOME, dtype=float))
+    with pytest.raises(TypeError, match="urrh_rcm.fk: fast must be None, True or False"):
+        m.fk(q, fast="yes")
+    p = np.array([m.PARAMETERS["p"], m.PARAMETERS["p"]])
+    with pytest.raises(RuntimeError, match="urrh_rcm.fk_status: fast=True.*arrays"):
+        m.fk_status(np.stack([q, q]), p=p, fast=True)
+    assert _bits_equal(m.fk(np.stack([q, q]), p=p), m.fk(np.stack([q, q]), fast=False))

@@ -43,7 +43,7 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
              step_uses: Sequence[Sequence[int]] | None = None,
              solve_index: Sequence[int], pivots: Kernel | None, jac: Kernel,
              limits_kernel: Kernel | None, limits: Sequence[tuple[float, float, str]],
-             angles: Sequence[int] = ()) -> str:
+             angles: Sequence[int] = (), row_kernels: Sequence[Kernel] = ()) -> str:
     """Source of ``generated/<name>.c`` (deterministic for equal inputs).
 
     ``angles``: the joints the user gets as angles ``q = 2 atan(t)`` of the algebra's
@@ -53,7 +53,12 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
 
     An elementary function of the pose that several stages take (tan(alpha/2) in the Study
     map, the Jacobian and the limits) is computed once per pose, in a stage of its own
-    (``_shared``), and passed to those kernels: the same value, the same C expression."""
+    (``_shared``), and passed to those kernels: the same value, the same C expression.
+
+    ``row_kernels``: kernels of the numpy module that the runtime may call through the
+    library row by row (``bonered_rows_<name>``, :func:`_row_entry`): forward kinematics'
+    back-substitution steps and Newton system, polynomials whose C program is the numpy
+    program operation for operation (the same numbers, bit for bit)."""
     npose, nstudy, nj, npar = len(pose), len(study_pose), len(joints), len(parameters)
     par = [f"par[{i}]" for i in range(npar)]
     pose_kernels = [k for k in (study, jac, limits_kernel) if k is not None]
@@ -354,7 +359,50 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
     if jac.outputs != 2 * nj + nj_entries:
         raise ValueError(f"{name}: the Jacobian kernel has {jac.outputs} outputs, expected "
                          f"{2 * nj + nj_entries}")
-    return "\n".join(lines + jac_block + body) + "\n"
+    rows_block = []
+    if row_kernels:  # in the Jacobian's translation unit
+        rows_block = ["", *_part_begin(2)]
+        for k in row_kernels:
+            if not k.c_source:
+                raise ValueError(f"{name}: row kernel {k.name} has no C source")
+            rows_block += [k.c_source.rstrip("\n"), *_row_entry(k)]
+        rows_block += _part_end()
+    return "\n".join(lines + jac_block + rows_block + body) + "\n"
+
+
+def _row_entry(k: Kernel) -> list[str]:
+    """``bonered_rows_<name>``: kernel ``k`` on ``n`` rows, argument j of row i read at
+    ``in[j][i * step[j]]`` (step 0: one value for every row, e.g. a parameter) and output
+    m written to ``out[m][i]`` (:meth:`bonered_alg.runtime.compiled.FastPath.rows`)."""
+    nargs, nout = len(k.arguments), k.outputs
+    args = ", ".join(f"in[{j}][i * step[{j}]]" for j in range(nargs))
+    # the outputs of the parameters alone (numbers among them): the numpy kernel returns
+    # them as numbers, not arrays (a step's B = 0 then takes the distance-leg rule), and so
+    # does the runtime's twin
+    _, subs, reduced = k.program
+    scalar = set(k.scalars)
+    for sym, e in subs:
+        if {str(v) for v in sp.sympify(e).free_symbols} <= scalar:
+            scalar.add(str(sym))
+    numbers = [m for m, e in enumerate(reduced)
+               if {str(v) for v in sp.sympify(e).free_symbols} <= scalar]
+    return [
+        f"/* {k.name} on n rows (bonered_alg.runtime.compiled.FastPath.rows) */",
+        f"const int bonered_rows_{k.name}_shape[4] = {{{nargs}, {nout}, {len(numbers)}, "
+        f"{k.operations}}};  /* in, out, outputs of the parameters alone, operations */",
+        f"const int bonered_rows_{k.name}_numbers[] = {{{', '.join(map(str, numbers)) or '-1'}}};",
+        f"void bonered_rows_{k.name}(long n, const double *const *in, const long *step,",
+        "                   double *const *out)",
+        "{",
+        "    for (long i = 0; i < n; i++) {",
+        f"        double o[{max(nout, 1)}];",
+        f"        {k.name}({args}, o);",
+        f"        for (int m = 0; m < {nout}; m++)",
+        "            out[m][i] = o[m];",
+        "    }",
+        "}",
+        "",
+    ]
 
 
 # the largest tree of roots solve_all_block keeps on the stack (bytes); a mechanism with more

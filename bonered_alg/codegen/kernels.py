@@ -121,10 +121,18 @@ class _Printer(_ScalarsFirst, NumPyPrinter):
         return super()._print_Pow(expr, rational=rational)
 
 
+# integer powers up to this are written as products, in numpy and C alike: numpy.power
+# (on AVX-512 machines numpy's own vector pow, elsewhere libm's, which differ in the last
+# bit for about 2.6 % of x**4) is then out of the kernels, so that their numbers are the
+# same on every machine, and C's program is numpy's operation for operation (the compiled
+# twins of forward kinematics' kernels, bit for bit); x**4 costs three multiplications
+SMALL_POWER = 8
+
+
 def _small_power(printer, expr) -> str | None:
-    """What both printers write alike: a constant folded, ``x^k`` for ``|k| <= 3`` as a
-    product (numpy.power with a negative exponent is several times slower than a
-    division); None for any other power."""
+    """What both printers write alike: a constant folded, ``x^k`` for ``|k| <= 8`` as a
+    product, left to right (SMALL_POWER; numpy.power with a negative exponent is several
+    times slower than a division); None for any other power."""
     folded = _number(expr)
     if folded is not None:
         return folded
@@ -132,9 +140,9 @@ def _small_power(printer, expr) -> str | None:
     b = printer.parenthesize(base, PRECEDENCE["Pow"], strict=False)
     if exp.is_Integer and int(exp) == 1:
         return b
-    if exp.is_Integer and 1 < int(exp) <= 3:
+    if exp.is_Integer and 1 < int(exp) <= SMALL_POWER:
         return "(" + "*".join([b] * int(exp)) + ")"
-    if exp.is_Integer and -3 <= int(exp) < 0:
+    if exp.is_Integer and -SMALL_POWER <= int(exp) < 0:
         return "(1.0/(" + "*".join([b] * -int(exp)) + "))"
     return None
 

@@ -339,13 +339,18 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
                        "coordinates alone (no step reads an earlier root).", scalars=par)
         kernels.append(fused)
     bit = len(mode_bits)
-    fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {})
+    # forward kinematics' polynomial kernels, also in C (the compiled fast path calls them
+    # row by row: c_module's row_kernels)
+    fk_kernels, fk_src, fk_bits = _step_kernels("fkstep", spec.fk_steps, spec.joints, par, {},
+                                                c=True)
     kernels += fk_kernels
+    row_kernels = list(fk_kernels)
     fk_charts = []
     for c, chart in enumerate(spec.fk_charts, start=1):
         chart_kernels, chart_src, _ = _step_kernels(f"fkchart{c}_step", chart, spec.joints,
-                                                    par, {})
+                                                    par, {}, c=True)
         kernels += chart_kernels
+        row_kernels += chart_kernels
         fk_charts.append((_step_rows(chart_src),
                           tuple(list(spec.fk_unknowns).index(st.joint) for st in chart)))
     has_fk = bool(spec.fk_steps or spec.rps)
@@ -361,7 +366,8 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
             "_fk_newton", [*spec.fk_unknowns, *spec.joints, *par],
             list(system) + list(pr.jacobian(list(system), spec.fk_unknowns)),
             "Residuals of the leg generators and their Jacobian in FK_UNKNOWNS (row-major).",
-            scalars=par))
+            c=True, scalars=par))
+        row_kernels.append(kernels[-1])
     compact = spec.compact or {}
     gens = [compact[st.joint].generator() if st.joint in compact else sp.expand(st.generator)
             for st in spec.steps]
@@ -549,7 +555,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         solve_index=context["solve_index"], pivots=by_name.get("_pivots"),
         jac=by_name["_jac"], limits_kernel=by_name.get("_limit_values"),
         limits=[(float(lim[2]), float(lim[3]), lim[4]) for lim in spec.limits],
-        angles=context["joint_angles"])
+        angles=context["joint_angles"], row_kernels=row_kernels)
     return (render("module.py.j2", context), {k.name: k.operations for k in kernels},
             c_source)
 

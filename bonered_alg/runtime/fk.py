@@ -31,6 +31,16 @@ def closure_system(spec, q, study, par):
     unknowns, at the back-substituted Study coordinates ``study``."""
     n = len(spec.unknowns)
     shape = study.shape[:-1]
+    matrix = getattr(spec.newton, "matrix", None)  # the compiled twin: one array
+    if matrix is not None:
+        out, at, rows = matrix(*columns(study), *columns(q), *par)
+        out = numpy.broadcast_to(out[:, :rows].reshape((len(out),) + at), (len(out),) + shape)
+        m = len(out) // (n + 1)
+        # C order, as numpy.stack gives below: numpy's small matrix products sum in an
+        # order that depends on the layout (the same numbers only from the same layout)
+        return (numpy.ascontiguousarray(numpy.moveaxis(out[:m], 0, -1)),
+                numpy.ascontiguousarray(numpy.moveaxis(out[m:], 0, -1)).reshape(
+                    shape + (m, n)))
     values = spec.newton(*columns(study), *columns(q), *par)
     vals = [broadcast(v, shape) for v in values]
     m = len(vals) // (n + 1)
@@ -151,11 +161,17 @@ def equilibrated(f, jac, x):
     f, J or x is not finite."""
     finite = numpy.isfinite(jac).all(axis=(-2, -1)) & numpy.isfinite(f).all(axis=-1)
     finite &= numpy.isfinite(x).all(axis=-1)
-    scale = 1.0 + numpy.abs(numpy.where(finite[..., None], x, 0.0))
-    js = numpy.where(finite[..., None, None], jac * scale[..., None, :], 0.0)
-    rows = numpy.linalg.norm(js, axis=-1)
-    rows = numpy.where(rows > 0, rows, 1.0)
-    return js / rows[..., None], numpy.where(finite[..., None], f, 0.0) / rows, scale, finite
+    if finite.all():  # the usual case: no row to zero (the same numbers, fewer passes)
+        scale = 1.0 + numpy.abs(x)
+        js = jac * scale[..., None, :]
+    else:
+        scale = 1.0 + numpy.abs(numpy.where(finite[..., None], x, 0.0))
+        js = numpy.where(finite[..., None, None], jac * scale[..., None, :], 0.0)
+        f = numpy.where(finite[..., None], f, 0.0)
+    # each row's norm as numpy.linalg.norm computes it (sqrt of the reduced squares)
+    rows = numpy.sqrt(numpy.add.reduce(js * js, axis=-1))
+    rows[rows == 0] = 1.0
+    return js / rows[..., None], f / rows, scale, finite
 
 
 def _scaled_step(js, fs, finite):
@@ -303,9 +319,10 @@ def input_singular(model, pose, q, par, status):
     return numpy.where((status == OK) & singular, INPUT_SINGULAR, status).astype(numpy.int8)
 
 
-def solve_all(model, q, par, with_status):
-    """Poses (..., modes, len(POSE)) and statuses (..., modes) of every assembly mode."""
-    spec = model.fk
+def solve_all(model, q, par, with_status, spec=None):
+    """Poses (..., modes, len(POSE)) and statuses (..., modes) of every assembly mode;
+    ``spec``: ``model.fk`` or its twin with compiled kernels (``FastPath.forward_kinematics``)."""
+    spec = model.fk if spec is None else spec
     shape = q.shape[:-1]
     if spec.rps is not None:
         rps, rps_status = rps_solver.solve(spec.rps, q, par)

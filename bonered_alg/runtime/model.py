@@ -755,11 +755,16 @@ class Model:
                                       f"generated for this mechanism: {self.fk.note}")
         return check.coordinates(self, func, q, self.joints, "joints")
 
-    def fk_all(self, q, params=None, with_status=False, func="fk"):
+    def fk_all(self, q, params=None, with_status=False, func="fk", fast=None):
+        """Every assembly mode's pose (and status); the polynomial kernels through the
+        compiled fast path where ``fast`` and the parameters allow (:meth:`_fast_path`:
+        the same numbers, bit for bit), else numpy."""
         q = self.algebraic(self._fk_joints(func, q))
         par = check.parameters(self, func, params or {})
+        compiled = self._fast_path(func, fast, par)
+        spec = self.fk if compiled is None else compiled.forward_kinematics(self.fk)
         poses, status = _chunked(q, par, lambda qc, pc: fk_solver.solve_all(
-            self, qc, pc, with_status), FK_CHUNK)
+            self, qc, pc, with_status, spec), FK_CHUNK)
         if with_status:  # every mode of non-finite joints: NaN, and the input is why
             invalid = ~numpy.isfinite(q).all(axis=-1)
             if invalid.any():
