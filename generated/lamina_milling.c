@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e3db09232a54e343613cb79ae83124a1d3564a0ba1d6bab5ab9a7e1f1bb240a8
+ * Derivation hash: 1fcce7f42851dc964f7914d0af90f40d13ad18b6b0e515709466d95afd66ba05
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e3db09232a54e343613cb79ae83124a1d3564a0ba1d6bab5ab9a7e1f1bb240a8";
+const char bonered_derivation_hash[] = "1fcce7f42851dc964f7914d0af90f40d13ad18b6b0e515709466d95afd66ba05";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 634988030b90fe1b7fe38b83517f7d49459299db26664e4352038ab94d143688
+ * Derivation hash: c8e449cc4608527e76275be0c92084275616eefe9cdee28934049704cc23a079
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "634988030b90fe1b7fe38b83517f7d49459299db26664e4352038ab94d143688";
+const char bonered_derivation_hash[] = "c8e449cc4608527e76275be0c92084275616eefe9cdee28934049704cc23a079";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e9d45309c7a22937eb9d080ca45c09a82bd70a856335bffa839d69760f0a75d7
+ * Derivation hash: 8219ac65690f5f54377b8c986eec5630bd159e92fda79c638ba654833f39aa25
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e9d45309c7a22937eb9d080ca45c09a82bd70a856335bffa839d69760f0a75d7";
+const char bonered_derivation_hash[] = "8219ac65690f5f54377b8c986eec5630bd159e92fda79c638ba654833f39aa25";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dff65a535bc3383c075bc84f42e8d228212c074ee572158d685f2056907fc4ed
+ * Derivation hash: 9e71a781902292092063b7b6fe2b2a291140c57c02175f22b7620c315397a698
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "dff65a535bc3383c075bc84f42e8d228212c074ee572158d685f2056907fc4ed";
+const char bonered_derivation_hash[] = "9e71a781902292092063b7b6fe2b2a291140c57c02175f22b7620c315397a698";
 int bonered_abi(void) { return 3; }
 #endif
 

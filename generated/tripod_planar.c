@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2e54d64eb5fa8a9eecad879acf8b9b541e04d9bb77db726fbfa8386c422b0091
+ * Derivation hash: f88637b1a30467ce918d04c572c132a51ea08984d94a06a35475e3d170a283bb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2e54d64eb5fa8a9eecad879acf8b9b541e04d9bb77db726fbfa8386c422b0091";
+const char bonered_derivation_hash[] = "f88637b1a30467ce918d04c572c132a51ea08984d94a06a35475e3d170a283bb";
 int bonered_abi(void) { return 3; }
 #endif
 

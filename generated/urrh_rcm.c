@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 118b4af7506be87e82efc1df2d54115acdb960811d453a59cf35466993851bfa
+ * Derivation hash: a6c3402de4afad9f913c75b5240ce748b6cedc7126998d1640f9626cf400365a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "118b4af7506be87e82efc1df2d54115acdb960811d453a59cf35466993851bfa";
+const char bonered_derivation_hash[] = "a6c3402de4afad9f913c75b5240ce748b6cedc7126998d1640f9626cf400365a";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -33,8 +33,9 @@ def closure_system(spec, q, study, par):
     shape = study.shape[:-1]
     matrix = getattr(spec.newton, "matrix", None)  # the compiled twin: one array
     if matrix is not None:
-        out, at, rows = matrix(*columns(study), *columns(q), *par)
-        out = numpy.broadcast_to(out[:, :rows].reshape((len(out),) + at), (len(out),) + shape)
+        out, at, n_rows = matrix(*columns(study), *columns(q), *par)
+        out = numpy.broadcast_to(out[:, :n_rows].reshape((len(out),) + at),
+                                 (len(out),) + shape)
         m = len(out) // (n + 1)
         # C order, as numpy.stack gives below: numpy's small matrix products sum in an
         # order that depends on the layout (the same numbers only from the same layout)
