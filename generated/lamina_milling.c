@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1fcce7f42851dc964f7914d0af90f40d13ad18b6b0e515709466d95afd66ba05
+ * Derivation hash: a31d0305cedaf6c3ceaae1ece7f840f2ea7dd05dff908b65015dc9aaa7c7f7b2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1fcce7f42851dc964f7914d0af90f40d13ad18b6b0e515709466d95afd66ba05";
+const char bonered_derivation_hash[] = "a31d0305cedaf6c3ceaae1ece7f840f2ea7dd05dff908b65015dc9aaa7c7f7b2";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -333,7 +333,7 @@ BF_INLINE void _fkstep0_y(double v_L, double v_t1, double v_t2, double v_lOA, do
     out[2] = v__c10*v__c6 + v__c10 + v__s77*v__c2 + v__s73*v__c5*v__c6 + v__c5*v__c9 + v__s74*v__c5 + v__s74*v__c6 + v__c9 + v__s73;
 }
 /* _fkstep0_y on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep0_y_shape[4] = {24, 3, 0, 248};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep0_y_shape[4] = {24, 3, 0, 67};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep0_y_numbers[] = {-1};
 void bonered_rows__fkstep0_y(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -376,7 +376,7 @@ BF_INLINE void _fkstep1_x(double v_L, double v_t1, double v_t2, double v_y, doub
     out[2] = v__c0*v__c6 + v__c2*v__c3 - v__c2*v__c5 + v__s8*v__c2 + v__c3 - v__c5 + v__c6 + v__s8;
 }
 /* _fkstep1_x on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep1_x_shape[4] = {25, 3, 1, 42};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep1_x_shape[4] = {25, 3, 1, 29};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep1_x_numbers[] = {0};
 void bonered_rows__fkstep1_x(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -544,7 +544,7 @@ BF_INLINE void _fkstep2_z(double v_L, double v_t1, double v_t2, double v_y, doub
     out[2] = v__s68*v_L*v__c0 + v__s67*v_L*v__c2 + v__s72*v_L*v__c4 + v__s62*v_L + v__c0*v__c8*v_t2 + v__s64*v__c0 + v__s70*v__c0*v_y + v__c1*v__c9 + v__c2*v__c7*v_t1 + v__s63*v__c2 + v__s71*v__c2*v_y + v__c3*v__c9 + v__s69*v__c4 + v__s73*v__c4*v_y + v__c5*v__c9 + v__c7*v_t2 + v__c8*v_t1 + v__s0*v__c9 + v__s65*v_y + v__s66;
 }
 /* _fkstep2_z on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep2_z_shape[4] = {26, 3, 0, 182};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep2_z_shape[4] = {26, 3, 0, 62};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep2_z_numbers[] = {-1};
 void bonered_rows__fkstep2_z(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -770,7 +770,7 @@ BF_INLINE void _fkchart1_step0_x(double v_L, double v_t1, double v_t2, double v_
     out[2] = v__s95*v__c10 + v__c11*v__c5 + v__c11 + v__c12*v__c5 + v__c12 + v__c13*v__c4 + v__c13 + v__s95*v__c2 + v__s94*v__c3 + v__s91*v__c5 + v__s95*v__c7 + v__s95*v__c9 + v__s91;
 }
 /* _fkchart1_step0_x on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step0_x_shape[4] = {24, 3, 0, 248};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step0_x_shape[4] = {24, 3, 0, 73};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step0_x_numbers[] = {-1};
 void bonered_rows__fkchart1_step0_x(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -814,7 +814,7 @@ BF_INLINE void _fkchart1_step1_y(double v_L, double v_t1, double v_t2, double v_
     out[2] = v__c2*v__c4 + v__s8*v__c2*v__c5 + v__s4*v__c2 + v__s7*v__c2*v_x + v__c4 + v__s6*v__c5 + v__s4 + v__s5*v_x;
 }
 /* _fkchart1_step1_y on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step1_y_shape[4] = {25, 3, 1, 43};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step1_y_shape[4] = {25, 3, 1, 28};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step1_y_numbers[] = {0};
 void bonered_rows__fkchart1_step1_y(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -965,7 +965,7 @@ BF_INLINE void _fkchart1_step2_z(double v_L, double v_t1, double v_t2, double v_
     out[2] = v__c1*v__c15 + v__c10*v__c3 + v__c10 + v__c11*v__c3*v_t1 + v__c11*v_t2 + v__c12*v__c5*v_t2 + v__c12*v_t1 + v__c13*v__c3 + v__c13 + v__s54*v__c14*v__c3 + v__s52*v__c14 - v__c15*v__c2 + v__c15*v__c4 - v__c15*v__c6 + v__c3*v__c7 + v__s48*v__c3 + v__s53*v__c3*v_x + v__c5*v__c8 + v__c5*v__c9 + v__c7 + v__c8 + v__c9 + v__s48 + v__s49*v_x;
 }
 /* _fkchart1_step2_z on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step2_z_shape[4] = {26, 3, 0, 201};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step2_z_shape[4] = {26, 3, 0, 77};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step2_z_numbers[] = {-1};
 void bonered_rows__fkchart1_step2_z(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1024,7 +1024,7 @@ BF_INLINE void _fk_newton(double v_y, double v_x, double v_z, double v_L, double
     out[11] = 0.0;
 }
 /* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fk_newton_shape[4] = {27, 12, 2, 103};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fk_newton_shape[4] = {27, 12, 2, 71};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fk_newton_numbers[] = {8, 11};
 void bonered_rows__fk_newton(long n, const double *const *in, const long *step,
                    double *const *out)

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c8e449cc4608527e76275be0c92084275616eefe9cdee28934049704cc23a079
+ * Derivation hash: 4debea06a9ca81604d7b115a915c4ecee08149eb6523ea744f092e1f944eb45d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c8e449cc4608527e76275be0c92084275616eefe9cdee28934049704cc23a079";
+const char bonered_derivation_hash[] = "4debea06a9ca81604d7b115a915c4ecee08149eb6523ea744f092e1f944eb45d";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -444,7 +444,7 @@ BF_INLINE void _fkstep0_g(double v_q1, double v_q2, double v_q3, double v_q4, do
     out[2] = -v__c0 + v__s1;
 }
 /* _fkstep0_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep0_g_shape[4] = {8, 3, 0, 19};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep0_g_shape[4] = {8, 3, 0, 13};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep0_g_numbers[] = {-1};
 void bonered_rows__fkstep0_g(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -547,7 +547,7 @@ BF_INLINE void _fkstep1_v1(double v_q1, double v_q2, double v_q3, double v_q4, d
     out[2] = -v__c0*v__c34 + v__s8*v__c0 + v__c1*v__c34 + v__s7*v__c1 + v__c10*v__c26 - 3.0*v__c10*v__c39 + v__s4*v__c10 + v__s8*v__c10*v_q1 + v__c12*v__c30 + v__s5*v__c12 + v__c13*v__c26 + v__s4*v__c13 + v__c16*v__c36 + v__s0*v__c16 + v__c18*v__c36 + v__s0*v__c18 + v__c20*v__c41 + v__s19*v__c20 + v__c21*v_q2 + v__c21*v_q3 + v__c22*v__c37 + v__s21*v__c22 + v__c23*v__c4 + v__c23*v__c6 + v__c24*v__c5 + v__c24*v__c8 + v__c25*v_q1 + v__c25*v_q2 - v__c27*v__c41 + v__s16*v__c27 - v__c28*v__c40 + v__s17*v__c28 + v__c29*v__c40 + v__s18*v__c29 + v__c30*v__c9*v_q1 + v_ra*v__c31*v__c42 + v__s20*v__c31 + v__c32*v__c34 + v__s7*v__c32 - v__c35*v__c41 + v__s16*v__c35 + v__c37*v_g*v_q2 - v__c38*v__c41 + v__s16*v__c38 + v__c39*v__c42*v__c9 + v__s12*v__c4 + v__s10*v__c5 + v__s12*v__c6 + v__s10*v__c8 + v__s3*v_q2 + v__s3*v_q3 + v__s6*v_q1;
 }
 /* _fkstep1_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep1_v1_shape[4] = {9, 3, 1, 232};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep1_v1_shape[4] = {9, 3, 1, 195};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep1_v1_numbers[] = {0};
 void bonered_rows__fkstep1_v1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -659,7 +659,7 @@ BF_INLINE void _fkstep2_v2(double v_q1, double v_q2, double v_q3, double v_q4, d
     out[2] = v__c0*v__c27 + v_ra*v__c0 + v__s16*v__c1*v_g - 2.0*v_ra*v__c1 + v__c10*v__c25 + v__s8*v__c10 + v__c12*v__c34 + 4.0*v__c12*v__c35 + v__c12*v__c38 + v__s23*v__c12*v__c40 + v__s23*v__c13*v__c23 + v__c13*v__c26 + v__c13*v__c34 + 4.0*v__c13*v__c37 + v__c13*v__c38 + v__s9*v__c13 + v__c16*v__c41 + v__s1*v__c17*v_g + v__s15*v__c17 - v__c18*v__c42 + v__s26*v__c18*v_g + v__s27*v__c19*v__c22 + 3.0*v__c19*v__c34 + v__s17*v__c19 + v__s19*v__c19*v_g + v__c2*v__c27 + v_ra*v__c2 - v__c21*v__c41 + v__c21*v__c44 + v__s2*v__c22 + v__s20*v__c22*v_q3 + v__c23*v__c39 + v__s20*v__c23*v_q1 + v__s5*v__c23 + v__c24*v_q1 + v__c24*v_q2 + v__c25*v__c30 + v__c25*v__c31 + v__c26*v__c32 + v__c26*v__c33 + v__s27*v__c28*v__c3 + v__s24*v__c28*v__c6 + v__s14*v__c28 + v__c29*v__c6 + v__c29*v__c8 + v__s11*v__c3 + v__s25*v__c3*v_g + v__s8*v__c30 + v__s8*v__c31 + v__s9*v__c32 + v__s9*v__c33 - v__c35*v__c36 - v__c36*v__c37 + v__c39*v__c40 - v__c41*v__c43 + v__c42*v__c6*v__c9 + v__c43*v__c44 + v__s4*v__c6 + v__s4*v__c8 + v__s3*v__c9 + v__s12*v_q2 + v__s6*v_q3;
 }
 /* _fkstep2_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep2_v2_shape[4] = {10, 3, 1, 266};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep2_v2_shape[4] = {10, 3, 1, 225};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep2_v2_numbers[] = {0};
 void bonered_rows__fkstep2_v2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -749,7 +749,7 @@ BF_INLINE void _fkchart1_step0_v2(double v_q1, double v_q2, double v_q3, double 
     out[2] = 0.0;
 }
 /* _fkchart1_step0_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step0_v2_shape[4] = {8, 3, 1, 230};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step0_v2_shape[4] = {8, 3, 1, 194};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step0_v2_numbers[] = {2};
 void bonered_rows__fkchart1_step0_v2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -808,7 +808,7 @@ BF_INLINE void _fkchart1_step1_v1(double v_q1, double v_q2, double v_q3, double 
     out[2] = v_v2*(v__s2*v__c0 + v__s3*v__c1 + v__s11*v__c12 + v__s10*v__c13 + v__s5*v__c14*v__c3 - v__c16*v__c5 - v__c16*v__c7 - v__c16*v__c8 + v__c17*v__c5 + v__c17*v__c7 + v__c18*v__c5 + v__c18*v__c8 + 18.0*v_ra*v__c2*v_q1 + v__s8*v__c3*v__c4 + v__s4*v__c3 + v__s9*v__c4);
 }
 /* _fkchart1_step1_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step1_v1_shape[4] = {9, 3, 1, 107};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step1_v1_shape[4] = {9, 3, 1, 90};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step1_v1_numbers[] = {0};
 void bonered_rows__fkchart1_step1_v1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -904,7 +904,7 @@ BF_INLINE void _fkchart1_step2_g(double v_q1, double v_q2, double v_q3, double v
     out[2] = v__c0*v__c27 + v__s2*v__c0 + v__c1*v__c27 + v__s2*v__c1 + v__c13*v__c33 + v__c14*v__c33 + v__c15*v__c24 + v__c15*v__c35 - v__c15*v__c36 - v__c15*v__c37 + v__c15*v__c38*v_v2 + v__s21*v__c16 + v__s22*v__c16*v_v2 + v__s14*v__c18 + v__s16*v__c18*v_v2 + v__s3*v__c19 + v__s18*v__c2 + v__s19*v__c2*v_v2 + v__c20*v__c31 + v__s15*v__c20*v__c9 + v__s8*v__c20 + v__s20*v__c21*v__c4 + v__s19*v__c21 + v__s22*v__c22*v__c5 + v__s23*v__c22 + v__c23*v__c8 + v__c23*v__c9 + v__c24*v__c4 + v__c25*v__c6 + v__c25*v__c8 + v__c26*v__c6 + v__c26*v__c9 - v__c28*v__c29*v_q1 + v__c28*v__c38 + v__s9*v__c28 + v__s5*v__c3*v_v2 + v__s6*v__c3 + v__c30*v__c4*v_q1 + v__c30*v__c6 - v__c30*v__c9 + v__c31*v__c32 + v__s15*v__c32*v__c8 + v__c34*v__c8 + v__c34*v__c9 + v__c35*v__c5 + v__c36*v__c5 + v__c37*v__c4 + v__s4*v__c4 + v__s4*v__c5;
 }
 /* _fkchart1_step2_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step2_g_shape[4] = {10, 3, 1, 219};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step2_g_shape[4] = {10, 3, 1, 182};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step2_g_numbers[] = {0};
 void bonered_rows__fkchart1_step2_g(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1005,7 +1005,7 @@ BF_INLINE void _fkchart2_step0_v1(double v_q1, double v_q2, double v_q3, double 
     out[2] = 0.0;
 }
 /* _fkchart2_step0_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart2_step0_v1_shape[4] = {8, 3, 1, 242};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step0_v1_shape[4] = {8, 3, 1, 194};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart2_step0_v1_numbers[] = {2};
 void bonered_rows__fkchart2_step0_v1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1067,7 +1067,7 @@ BF_INLINE void _fkchart2_step1_v2(double v_q1, double v_q2, double v_q3, double 
     out[2] = v_v1*(v__s4*v__c0 + v__s5*v__c1 + v__c10*v__c15 + v__c10*v__c18 + v__c12*v__c15 + v__c12*v__c17 + v__s10*v__c14 + v__c15*v__c16 + v__c16*v__c17 + v__c16*v__c18 + v__s13*v__c2 + v__s12*v__c4 - 18.0*v_ra*v__c4*v_q2 + v__s7*v__c5*v__c7 + v__s6*v__c7 + v__s11*v__c9);
 }
 /* _fkchart2_step1_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart2_step1_v2_shape[4] = {9, 3, 1, 108};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step1_v2_shape[4] = {9, 3, 1, 86};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart2_step1_v2_numbers[] = {0};
 void bonered_rows__fkchart2_step1_v2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1145,7 +1145,7 @@ BF_INLINE void _fkchart2_step2_g(double v_q1, double v_q2, double v_q3, double v
     out[2] = -v__c0*v__c18 + v__s4*v__c0 + v__c1*v__c18 + v__s4*v__c1 - v__c10*v__c26 + v__s4*v__c10 + v__c11*v__c26 + v__s4*v__c11 + v__s12*v__c12*v_q2 + v__s12*v__c13 + v__s12*v__c14 + v__c15*v_q2 + v__c15*v_q3 + v__c16*v_q2 + v__c16*v_q3 + v__c17*v__c27*v__c6 + v__c17*v__c28 + v__s8*v__c17*v_q3 + v__s9*v__c17 + v__c19*v__c27 + v__s10*v__c19 + 8.0*v__c19*v_q1 - 12.0*v__c2*v__c24 + v__s12*v__c2*v__c4 + v__s11*v__c2 + v__s5*v__c2*v_v1 + v__c20*v__c7 + v__c20*v__c9 + v__c21*v__c22 + v__c21*v__c7 + v__s18*v__c23*v_q1 + v__s5*v__c23 + v__s18*v__c24*v_q2 + v__s8*v__c24 - v__c25*v_q1 + v__c25*v_q3 - v__c26*v__c7*v_q2 + v__c28*v_q2*v_v1 + v__s6*v__c4 + v__s7*v__c5 + v__s7*v__c6 - 8.0*v__c7*v_q3*v_v1;
 }
 /* _fkchart2_step2_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart2_step2_g_shape[4] = {10, 3, 1, 186};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step2_g_shape[4] = {10, 3, 1, 156};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart2_step2_g_numbers[] = {0};
 void bonered_rows__fkchart2_step2_g(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1154,6 +1154,290 @@ void bonered_rows__fkchart2_step2_g(long n, const double *const *in, const long 
         double o[3];
         _fkchart2_step2_g(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], o);
         for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients C_ij[a][b] of u_i^a u_j^b in e12, e23, e31 (row-major). */
+BF_INLINE void _rps_coefficients(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__c0 = 2.0*v_ra;
+    const double v__c1 = v__c0*v_q5;
+    const double v__c2 = -v__c1;
+    const double v__c3 = v__c0*v_q4;
+    const double v__c4 = (v_q4*v_q4);
+    const double v__c5 = (v_rb*v_rb);
+    const double v__c6 = (v_ra*v_ra);
+    const double v__c7 = -2.0*v__c5 + 2.0*v__c6 + (v_q5*v_q5);
+    const double v__c8 = v__c4 + v__c7;
+    const double v__c9 = -v__c3 + v__c8;
+    const double v__c10 = 8.0*v_q5;
+    const double v__c11 = v__c3 + v__c8;
+    const double v__c12 = v__c0*v_q6;
+    const double v__c13 = -v__c12;
+    const double v__c14 = (v_q6*v_q6);
+    const double v__c15 = v__c14 + v__c7;
+    const double v__c16 = v__c15 + v__c2;
+    const double v__c17 = v__c1 + v__c15;
+    const double v__c18 = 4.0*v_ra;
+    const double v__c19 = v__c18*v_q4;
+    const double v__c20 = -v__c19;
+    const double v__c21 = v_q4*v_q6;
+    const double v__c22 = 2.0*v__c21;
+    const double v__c23 = -4.0*v__c5;
+    const double v__c24 = 4.0*v__c6;
+    const double v__c25 = v__c18*v_q6;
+    const double v__c26 = v__c14 + v__c23 + v__c24 - v__c25 + v__c4;
+    const double v__c27 = -v__c22;
+    const double v__c28 = v__c14 + v__c23 + v__c24 + v__c25 + v__c4;
+    out[0] = v__c2 + v__c9;
+    out[1] = 0.0;
+    out[2] = v__c1 + v__c9;
+    out[3] = 0.0;
+    out[4] = v__c10*v_q4;
+    out[5] = 0.0;
+    out[6] = v__c11 + v__c2;
+    out[7] = 0.0;
+    out[8] = v__c1 + v__c11;
+    out[9] = v__c13 + v__c16;
+    out[10] = 0.0;
+    out[11] = v__c12 + v__c16;
+    out[12] = 0.0;
+    out[13] = -v__c10*v_q6;
+    out[14] = 0.0;
+    out[15] = v__c13 + v__c17;
+    out[16] = 0.0;
+    out[17] = v__c12 + v__c17;
+    out[18] = v__c20 + v__c22 + v__c26;
+    out[19] = 0.0;
+    out[20] = v__c19 + v__c26 + v__c27;
+    out[21] = 0.0;
+    out[22] = 8.0*v__c21;
+    out[23] = 0.0;
+    out[24] = v__c20 + v__c27 + v__c28;
+    out[25] = 0.0;
+    out[26] = v__c19 + v__c22 + v__c28;
+}
+/* _rps_coefficients on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_coefficients_shape[4] = {8, 27, 12, 53};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_coefficients_numbers[] = {1, 3, 5, 7, 10, 12, 14, 16, 19, 21, 23, 25};
+void bonered_rows__rps_coefficients(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[27];
+        _rps_coefficients(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], o);
+        for (int m = 0; m < 27; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* e12, e23, e31 and their Jacobian in the revolute tan-half angles. */
+BF_INLINE void _rps_equations(double v_u4, double v_u5, double v_u6, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__c0 = (v_q4*v_q4);
+    const double v__c1 = (v_u5*v_u5);
+    const double v__c2 = v__c0*v__c1;
+    const double v__c3 = (v_q5*v_q5);
+    const double v__c4 = (v_u4*v_u4);
+    const double v__c5 = v__c3*v__c4;
+    const double v__c6 = 2.0*v_ra;
+    const double v__c7 = v__c6*v_q4;
+    const double v__c8 = (v_rb*v_rb);
+    const double v__c9 = 2.0*v__c8;
+    const double v__c10 = v__c4*v__c9;
+    const double v__c11 = (v_ra*v_ra);
+    const double v__c12 = 2.0*v__c11;
+    const double v__c13 = v__c12*v__c4;
+    const double v__c14 = v__c0*v__c4;
+    const double v__c15 = v__c1*v__c7;
+    const double v__c16 = v__c6*v_q5;
+    const double v__c17 = v__c16*v__c4;
+    const double v__c18 = 8.0*v_u4;
+    const double v__c19 = v_q4*v_q5;
+    const double v__c20 = v__c18*v__c19;
+    const double v__c21 = v__c0 + v__c14;
+    const double v__c22 = v__c1*v__c3;
+    const double v__c23 = v__c1*v__c9;
+    const double v__c24 = v__c1*v__c12;
+    const double v__c25 = v__c1*v__c16;
+    const double v__c26 = v__c12 - v__c16 + v__c22 - v__c23 + v__c24 + v__c25 + v__c3 - v__c9;
+    const double v__c27 = (v_u6*v_u6);
+    const double v__c28 = v__c27*v__c3;
+    const double v__c29 = (v_q6*v_q6);
+    const double v__c30 = v__c1*v__c29;
+    const double v__c31 = v__c6*v_q6;
+    const double v__c32 = v__c1*v__c31;
+    const double v__c33 = 8.0*v_u6;
+    const double v__c34 = v_q5*v_q6;
+    const double v__c35 = v__c33*v__c34;
+    const double v__c36 = v__c27*v__c29;
+    const double v__c37 = v__c29 + v__c36;
+    const double v__c38 = 4.0*v__c8;
+    const double v__c39 = 4.0*v__c11;
+    const double v__c40 = v__c0*v__c27;
+    const double v__c41 = v__c29*v__c4;
+    const double v__c42 = 4.0*v_ra;
+    const double v__c43 = v__c42*v_q4;
+    const double v__c44 = v__c42*v_q6;
+    const double v__c45 = v__c38*v__c4;
+    const double v__c46 = v__c27*v__c38;
+    const double v__c47 = v_q4*v_q6;
+    const double v__c48 = 2.0*v__c47;
+    const double v__c49 = v__c39*v__c4;
+    const double v__c50 = v__c27*v__c39;
+    const double v__c51 = v__c27*v__c43;
+    const double v__c52 = v__c4*v__c44;
+    const double v__c53 = v__c4*v__c48;
+    const double v__c54 = v__c4*v__c43;
+    const double v__c55 = v__c27*v__c44;
+    const double v__c56 = v__c18*v__c47;
+    const double v__c57 = 8.0*v_u5;
+    const double v__c58 = v__c43*v_u4;
+    const double v__c59 = v__c42*v_q5;
+    const double v__c60 = v__c59*v_u4;
+    const double v__c61 = 2.0*v_u4;
+    const double v__c62 = v__c0*v__c61;
+    const double v__c63 = v__c39*v_u4;
+    const double v__c64 = v__c38*v_u4;
+    const double v__c65 = 2.0*v_u5;
+    const double v__c66 = v__c59*v_u5;
+    const double v__c67 = v__c3*v__c65 - v__c38*v_u5 + v__c39*v_u5 + v__c66;
+    const double v__c68 = v__c59*v_u6;
+    const double v__c69 = v__c44*v_u6;
+    const double v__c70 = 2.0*v_u6;
+    const double v__c71 = v__c29*v__c70;
+    const double v__c72 = v__c39*v_u6;
+    const double v__c73 = v__c38*v_u6;
+    const double v__c74 = 4.0*v__c47;
+    const double v__c75 = v__c74*v_u4;
+    const double v__c76 = v__c18*v_ra;
+    const double v__c77 = v__c76*v_q4;
+    const double v__c78 = v__c76*v_q6;
+    const double v__c79 = v__c11*v__c18;
+    const double v__c80 = v__c18*v__c8;
+    const double v__c81 = v__c74*v_u6;
+    const double v__c82 = v__c33*v_ra;
+    const double v__c83 = v__c82*v_q4;
+    const double v__c84 = v__c82*v_q6;
+    const double v__c85 = v__c11*v__c33;
+    const double v__c86 = v__c33*v__c8;
+    out[0] = -v__c1*v__c10 + v__c1*v__c13 + v__c1*v__c14 + v__c1*v__c17 + v__c1*v__c5 - v__c10 + v__c13 + v__c15*v__c4 - v__c15 - v__c17 + v__c2 + v__c20*v_u5 + v__c21 + v__c26 + v__c4*v__c7 + v__c5 - v__c7;
+    out[1] = v__c12*v__c27 - v__c16*v__c27 + v__c22*v__c27 - v__c23*v__c27 + v__c24*v__c27 + v__c25*v__c27 + v__c26 + v__c27*v__c30 + v__c27*v__c31 + v__c27*v__c32 - v__c27*v__c9 + v__c28 + v__c30 - v__c31 - v__c32 - v__c35*v_u5 + v__c37;
+    out[2] = v__c14*v__c27 + v__c21 - v__c27*v__c45 - v__c27*v__c48 + v__c27*v__c49 + v__c27*v__c52 + v__c27*v__c53 + v__c36*v__c4 + v__c37 - v__c38 + v__c39 + v__c4*v__c51 + v__c40 + v__c41 - v__c43 - v__c44 - v__c45 - v__c46 + v__c48 + v__c49 + v__c50 - v__c51 - v__c52 - v__c53 + v__c54 + v__c55 + v__c56*v_u6;
+    out[3] = v__c1*v__c58 + v__c1*v__c60 + v__c1*v__c63 - v__c1*v__c64 + v__c19*v__c57 + v__c2*v__c61 + v__c22*v__c61 + v__c3*v__c61 + v__c58 - v__c60 + v__c62 + v__c63 - v__c64;
+    out[4] = v__c0*v__c65 + v__c14*v__c65 + v__c20 + v__c4*v__c66 - v__c43*v_u5 - v__c45*v_u5 + v__c49*v_u5 + v__c5*v__c65 + v__c54*v_u5 + v__c67;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = v__c27*v__c66 + v__c28*v__c65 + v__c29*v__c65 - v__c35 + v__c36*v__c65 - v__c44*v_u5 - v__c46*v_u5 + v__c50*v_u5 + v__c55*v_u5 + v__c67;
+    out[8] = v__c1*v__c68 + v__c1*v__c69 + v__c1*v__c72 - v__c1*v__c73 + v__c22*v__c70 + v__c3*v__c70 + v__c30*v__c70 - v__c34*v__c57 - v__c68 + v__c69 + v__c71 + v__c72 - v__c73;
+    out[9] = v__c27*v__c75 + v__c27*v__c77 + v__c27*v__c78 + v__c27*v__c79 - v__c27*v__c80 + v__c29*v__c61 + v__c33*v__c47 + v__c36*v__c61 + v__c40*v__c61 + v__c62 - v__c75 + v__c77 - v__c78 + v__c79 - v__c80;
+    out[10] = 0.0;
+    out[11] = v__c0*v__c70 + v__c14*v__c70 + v__c4*v__c81 + v__c4*v__c83 + v__c4*v__c84 + v__c4*v__c85 - v__c4*v__c86 + v__c41*v__c70 + v__c56 + v__c71 - v__c81 - v__c83 + v__c84 + v__c85 - v__c86;
+}
+/* _rps_equations on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_equations_shape[4] = {11, 12, 3, 295};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_equations_numbers[] = {5, 6, 10};
+void bonered_rows__rps_equations(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[12];
+        _rps_equations(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], o);
+        for (int m = 0; m < 12; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Spherical joint centres B_k in the closure's base frame. */
+BF_INLINE void _rps_centres(double v_u4, double v_u5, double v_u6, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double *restrict out)
+{
+    const double v__c0 = (v_u4*v_u4);
+    const double v__c1 = (1.0/((v__c0 + 1.0)));
+    const double v__c2 = (v_u5*v_u5);
+    const double v__c3 = (1.0/((v__c2 + 1.0)));
+    const double v__c4 = (v_u6*v_u6);
+    const double v__c5 = (1.0/((v__c4 + 1.0)));
+    out[0] = v__c1*(v__c0*v_q4 + v__c0*v_ra - v_q4 + v_ra);
+    out[1] = 0.0;
+    out[2] = 2.0*v__c1*v_q4*v_u4;
+    out[3] = 0.0;
+    out[4] = v__c3*(v__c2*v_q5 + v__c2*v_ra - v_q5 + v_ra);
+    out[5] = -2.0*v__c3*v_q5*v_u5;
+    out[6] = v__c5*(-v__c4*v_q6 - v__c4*v_ra + v_q6 - v_ra);
+    out[7] = 0.0;
+    out[8] = -2.0*v__c5*v_q6*v_u6;
+}
+/* _rps_centres on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_centres_shape[4] = {11, 9, 3, 38};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_centres_numbers[] = {1, 3, 7};
+void bonered_rows__rps_centres(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[9];
+        _rps_centres(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], o);
+        for (int m = 0; m < 9; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Spherical joint centres P_k in the platform frame. */
+BF_INLINE void _rps_platform(double v_ra, double v_rb, double *restrict out)
+{
+    out[0] = v_rb;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = v_rb;
+    out[5] = 0.0;
+    out[6] = -v_rb;
+    out[7] = 0.0;
+    out[8] = 0.0;
+}
+/* _rps_platform on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_platform_shape[4] = {2, 9, 9, 0};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_platform_numbers[] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+void bonered_rows__rps_platform(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[9];
+        _rps_platform(in[0][i * step[0]], in[1][i * step[1]], o);
+        for (int m = 0; m < 9; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Study coordinates (chart x0 = 1) of the platform from R (row-major) and t. */
+BF_INLINE void _rps_study(double v_r0, double v_r1, double v_r2, double v_r3, double v_r4, double v_r5, double v_r6, double v_r7, double v_r8, double v_t0, double v_t1, double v_t2, double *restrict out)
+{
+    const double v__c0 = -v_r5 + v_r7;
+    const double v__c1 = v_r0 + v_r4 + v_r8 + 1.0;
+    const double v__c2 = (1.0/(v__c1));
+    const double v__c3 = v_r2 - v_r6;
+    const double v__c4 = -v_r1 + v_r3;
+    const double v__c5 = (0.5)*v_t0;
+    const double v__c6 = (0.5)*v__c4;
+    const double v__c7 = (0.5)*v_t2;
+    out[0] = v__c0*v__c2;
+    out[1] = v__c2*v__c3;
+    out[2] = v__c2*v__c4;
+    out[3] = v__c2*(v__c0*v__c5 + (0.5)*v__c3*v_t1 + v__c6*v_t2);
+    out[4] = v__c2*(-v__c1*v__c5 + (0.5)*v__c3*v_t2 - v__c6*v_t1);
+    out[5] = v__c2*(-v__c0*v__c7 - 0.5*v__c1*v_t1 + (0.5)*v__c4*v_t0);
+    out[6] = v__c2*((0.5)*v__c0*v_t1 - v__c1*v__c7 - v__c3*v__c5);
+}
+/* _rps_study on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_study_shape[4] = {12, 7, 0, 42};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_study_numbers[] = {-1};
+void bonered_rows__rps_study(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[7];
+        _rps_study(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], o);
+        for (int m = 0; m < 7; m++)
             out[m][i] = o[m];
     }
 }
@@ -1204,7 +1488,7 @@ BF_INLINE void _fk_newton(double v_g, double v_v1, double v_v2, double v_q1, dou
     out[15] = -v__c15 + v__s4;
 }
 /* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fk_newton_shape[4] = {11, 16, 5, 73};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fk_newton_shape[4] = {11, 16, 5, 61};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fk_newton_numbers[] = {0, 4, 5, 6, 9};
 void bonered_rows__fk_newton(long n, const double *const *in, const long *step,
                    double *const *out)

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8219ac65690f5f54377b8c986eec5630bd159e92fda79c638ba654833f39aa25
+ * Derivation hash: 5a7eb4454f1a64f8e5548691d82aad41ab01afe2208fd81adfb2ce4431305bf5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8219ac65690f5f54377b8c986eec5630bd159e92fda79c638ba654833f39aa25";
+const char bonered_derivation_hash[] = "5a7eb4454f1a64f8e5548691d82aad41ab01afe2208fd81adfb2ce4431305bf5";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -192,7 +192,7 @@ BF_INLINE void _fkstep0_yu2(double v_t1, double v_w1, double v_q4, double v_q5, 
     out[2] = v_q5;
 }
 /* _fkstep0_yu2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep0_yu2_shape[4] = {15, 3, 2, 0};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep0_yu2_shape[4] = {15, 3, 2, 0};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep0_yu2_numbers[] = {0, 1};
 void bonered_rows__fkstep0_yu2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -213,7 +213,7 @@ BF_INLINE void _fkstep1_yu3(double v_t1, double v_w1, double v_q4, double v_q5, 
     out[2] = v_Dz;
 }
 /* _fkstep1_yu3 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep1_yu3_shape[4] = {16, 3, 3, 0};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep1_yu3_shape[4] = {16, 3, 3, 0};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep1_yu3_numbers[] = {0, 1, 2};
 void bonered_rows__fkstep1_yu3(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -235,7 +235,7 @@ BF_INLINE void _fkstep2_yu1(double v_t1, double v_w1, double v_q4, double v_q5, 
     out[2] = v__s0 + (v_q4*v_q4) - 2.0*v_q4*v_q5 + (v_q5*v_q5);
 }
 /* _fkstep2_yu1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep2_yu1_shape[4] = {17, 3, 2, 11};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep2_yu1_shape[4] = {17, 3, 2, 7};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep2_yu1_numbers[] = {0, 1};
 void bonered_rows__fkstep2_yu1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -830,7 +830,7 @@ BF_INLINE void _fkstep3_yd2(double v_t1, double v_w1, double v_q4, double v_q5, 
     out[2] = v__s242*v__c16 + v__s250*v__c17 + v__s249*v__c21 + v__s247*v__c22 + v__s248*v__c26 + v__s246*v__c27 + v__c28*v__c7 + v__c28*v_w1 + v__c29*v__c4 + v__c29 + v__c3*v__c30 + v__s243*v__c3 + v__c30 + v__c31*v__c7 + v__c31*v_w1 + v__c32*v__c5 + v__c32*v_t1 + v__c33*v__c7 + v__c33*v_w1 + v__s243*v__c4 + v__s249*v__c5 + v__s247*v__c7 + v__s242 + v__s246*v_w1 + v__s248*v_t1;
 }
 /* _fkstep3_yd2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep3_yd2_shape[4] = {18, 3, 0, 728};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep3_yd2_shape[4] = {18, 3, 0, 168};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep3_yd2_numbers[] = {-1};
 void bonered_rows__fkstep3_yd2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -888,7 +888,7 @@ BF_INLINE void _fkstep4_yd1(double v_t1, double v_w1, double v_q4, double v_q5, 
     out[2] = v__c0*v__c4 + v__c0*v__c9 + v__c10*v__c2 + v__c10 + v__c2*v__c3 + v__c2*v__c5 + v__c2*v__c6 - v__c2*v__c8 + v__s13*v__c2 + v__c3 + v__c4 + v__c5 + v__c6 - v__c8 + v__c9 + v__s13;
 }
 /* _fkstep4_yd1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep4_yd1_shape[4] = {19, 3, 1, 76};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep4_yd1_shape[4] = {19, 3, 1, 45};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep4_yd1_numbers[] = {0};
 void bonered_rows__fkstep4_yd1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -909,7 +909,7 @@ BF_INLINE void _fkchart1_step0_yu2(double v_t1, double v_w1, double v_q4, double
     out[2] = v_q5;
 }
 /* _fkchart1_step0_yu2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step0_yu2_shape[4] = {15, 3, 2, 0};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step0_yu2_shape[4] = {15, 3, 2, 0};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step0_yu2_numbers[] = {0, 1};
 void bonered_rows__fkchart1_step0_yu2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -930,7 +930,7 @@ BF_INLINE void _fkchart1_step1_yu3(double v_t1, double v_w1, double v_q4, double
     out[2] = v_Dz;
 }
 /* _fkchart1_step1_yu3 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step1_yu3_shape[4] = {16, 3, 3, 0};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step1_yu3_shape[4] = {16, 3, 3, 0};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step1_yu3_numbers[] = {0, 1, 2};
 void bonered_rows__fkchart1_step1_yu3(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -952,7 +952,7 @@ BF_INLINE void _fkchart1_step2_yu1(double v_t1, double v_w1, double v_q4, double
     out[2] = v__s0 + (v_q4*v_q4) - 2.0*v_q4*v_q5 + (v_q5*v_q5);
 }
 /* _fkchart1_step2_yu1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step2_yu1_shape[4] = {17, 3, 2, 11};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step2_yu1_shape[4] = {17, 3, 2, 7};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step2_yu1_numbers[] = {0, 1};
 void bonered_rows__fkchart1_step2_yu1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1588,7 +1588,7 @@ BF_INLINE void _fkchart1_step3_yd1(double v_t1, double v_w1, double v_q4, double
     out[2] = v__s287*v__c17 + v__s289*v__c18 + v__s290*v__c19 + v__s289*v__c20 + v__s289*v__c21 + v__s288*v__c22 + v__s288*v__c23 + v__s289*v__c24 + v__s290*v__c25 + v__c26*v__c3 + v__c26 + v__c27*v__c4 + v__c27 + v__c28*v__c4 + v__c28 + v__c29*v__c4 + v__c29 + v__c3*v__c30 + v__c3*v__c31 + v__c30 + v__c31 + v__c32*v__c4 + v__c32 + v__s282*v__c4 + v__s282;
 }
 /* _fkchart1_step3_yd1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step3_yd1_shape[4] = {18, 3, 0, 811};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step3_yd1_shape[4] = {18, 3, 0, 168};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step3_yd1_numbers[] = {-1};
 void bonered_rows__fkchart1_step3_yd1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1648,7 +1648,7 @@ BF_INLINE void _fkchart1_step4_yd2(double v_t1, double v_w1, double v_q4, double
     out[2] = v__c3*v__c6 + v__c5*v__c7 + v__c5*v__c8 + v__s15*v__c5*v__c9 + v__s10*v__c5 + v__s14*v__c5*v_yd1 + v__c6 + v__c7 + v__c8 + v__s13*v__c9 + v__s10 + v__s12*v_yd1;
 }
 /* _fkchart1_step4_yd2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step4_yd2_shape[4] = {19, 3, 1, 71};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step4_yd2_shape[4] = {19, 3, 1, 43};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step4_yd2_numbers[] = {0};
 void bonered_rows__fkchart1_step4_yd2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1737,7 +1737,7 @@ BF_INLINE void _fk_newton(double v_yu2, double v_yu3, double v_yu1, double v_yd2
     out[29] = -v__c11*v__c13 + v__c11*v__c16 + v__c13 + v__c16;
 }
 /* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fk_newton_shape[4] = {20, 30, 20, 131};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fk_newton_shape[4] = {20, 30, 20, 91};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fk_newton_numbers[] = {5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 18, 19, 20, 21, 22, 25, 26, 27};
 void bonered_rows__fk_newton(long n, const double *const *in, const long *step,
                    double *const *out)

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9e71a781902292092063b7b6fe2b2a291140c57c02175f22b7620c315397a698
+ * Derivation hash: 78bafc1f5f4d0e863371e795519b6e531032f8bf76a6e449aeed9ea701b1f3c7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9e71a781902292092063b7b6fe2b2a291140c57c02175f22b7620c315397a698";
+const char bonered_derivation_hash[] = "78bafc1f5f4d0e863371e795519b6e531032f8bf76a6e449aeed9ea701b1f3c7";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f88637b1a30467ce918d04c572c132a51ea08984d94a06a35475e3d170a283bb
+ * Derivation hash: bc724d5d172f3bb01650347706c11c6c5774c857c49b8f4048a0a0c15fa4dcb5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f88637b1a30467ce918d04c572c132a51ea08984d94a06a35475e3d170a283bb";
+const char bonered_derivation_hash[] = "bc724d5d172f3bb01650347706c11c6c5774c857c49b8f4048a0a0c15fa4dcb5";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -941,7 +941,7 @@ BF_INLINE void _fkstep0_g(double v_q1, double v_q2, double v_q3, double v_q4, do
     out[2] = -v__c0 + v__s1;
 }
 /* _fkstep0_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep0_g_shape[4] = {9, 3, 0, 19};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep0_g_shape[4] = {9, 3, 0, 13};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep0_g_numbers[] = {-1};
 void bonered_rows__fkstep0_g(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1044,7 +1044,7 @@ BF_INLINE void _fkstep1_v1(double v_q1, double v_q2, double v_q3, double v_q4, d
     out[2] = -v__c0*v__c34 + v__s8*v__c0 + v__c1*v__c34 + v__s7*v__c1 + v__c10*v__c26 - 3.0*v__c10*v__c39 + v__s4*v__c10 + v__s8*v__c10*v_q4 + v__c12*v__c30 + v__s5*v__c12 + v__c13*v__c26 + v__s4*v__c13 + v__c16*v__c36 + v__s0*v__c16 + v__c18*v__c36 + v__s0*v__c18 + v__c20*v__c41 + v__s19*v__c20 + v__c21*v_q5 + v__c21*v_q6 + v__c22*v__c37 + v__s21*v__c22 + v__c23*v__c4 + v__c23*v__c6 + v__c24*v__c5 + v__c24*v__c8 + v__c25*v_q4 + v__c25*v_q5 - v__c27*v__c41 + v__s16*v__c27 - v__c28*v__c40 + v__s17*v__c28 + v__c29*v__c40 + v__s18*v__c29 + v__c30*v__c9*v_q4 + v_rb*v__c31*v__c42 + v__s20*v__c31 + v__c32*v__c34 + v__s7*v__c32 - v__c35*v__c41 + v__s16*v__c35 + v__c37*v_g*v_q5 - v__c38*v__c41 + v__s16*v__c38 + v__c39*v__c42*v__c9 + v__s12*v__c4 + v__s10*v__c5 + v__s12*v__c6 + v__s10*v__c8 + v__s3*v_q5 + v__s3*v_q6 + v__s6*v_q4;
 }
 /* _fkstep1_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep1_v1_shape[4] = {10, 3, 1, 232};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep1_v1_shape[4] = {10, 3, 1, 195};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep1_v1_numbers[] = {0};
 void bonered_rows__fkstep1_v1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1156,7 +1156,7 @@ BF_INLINE void _fkstep2_v2(double v_q1, double v_q2, double v_q3, double v_q4, d
     out[2] = v__c0*v__c27 + v_rb*v__c0 + v__s16*v__c1*v_g - 2.0*v_rb*v__c1 + v__c10*v__c25 + v__s8*v__c10 + v__c12*v__c34 + 4.0*v__c12*v__c35 + v__c12*v__c38 + v__s23*v__c12*v__c40 + v__s23*v__c13*v__c23 + v__c13*v__c26 + v__c13*v__c34 + 4.0*v__c13*v__c37 + v__c13*v__c38 + v__s9*v__c13 + v__c16*v__c41 + v__s1*v__c17*v_g + v__s15*v__c17 - v__c18*v__c42 + v__s26*v__c18*v_g + v__s27*v__c19*v__c22 + 3.0*v__c19*v__c34 + v__s17*v__c19 + v__s19*v__c19*v_g + v__c2*v__c27 + v_rb*v__c2 - v__c21*v__c41 + v__c21*v__c44 + v__s2*v__c22 + v__s20*v__c22*v_q6 + v__c23*v__c39 + v__s20*v__c23*v_q4 + v__s5*v__c23 + v__c24*v_q4 + v__c24*v_q5 + v__c25*v__c30 + v__c25*v__c31 + v__c26*v__c32 + v__c26*v__c33 + v__s27*v__c28*v__c3 + v__s24*v__c28*v__c6 + v__s14*v__c28 + v__c29*v__c6 + v__c29*v__c8 + v__s11*v__c3 + v__s25*v__c3*v_g + v__s8*v__c30 + v__s8*v__c31 + v__s9*v__c32 + v__s9*v__c33 - v__c35*v__c36 - v__c36*v__c37 + v__c39*v__c40 - v__c41*v__c43 + v__c42*v__c6*v__c9 + v__c43*v__c44 + v__s4*v__c6 + v__s4*v__c8 + v__s3*v__c9 + v__s12*v_q5 + v__s6*v_q6;
 }
 /* _fkstep2_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep2_v2_shape[4] = {11, 3, 1, 266};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep2_v2_shape[4] = {11, 3, 1, 225};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep2_v2_numbers[] = {0};
 void bonered_rows__fkstep2_v2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1246,7 +1246,7 @@ BF_INLINE void _fkchart1_step0_v2(double v_q1, double v_q2, double v_q3, double 
     out[2] = 0.0;
 }
 /* _fkchart1_step0_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step0_v2_shape[4] = {9, 3, 1, 230};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step0_v2_shape[4] = {9, 3, 1, 194};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step0_v2_numbers[] = {2};
 void bonered_rows__fkchart1_step0_v2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1305,7 +1305,7 @@ BF_INLINE void _fkchart1_step1_v1(double v_q1, double v_q2, double v_q3, double 
     out[2] = v_v2*(v__s2*v__c0 + v__s3*v__c1 + v__s11*v__c12 + v__s10*v__c13 + v__s5*v__c14*v__c3 - v__c16*v__c5 - v__c16*v__c7 - v__c16*v__c8 + v__c17*v__c5 + v__c17*v__c7 + v__c18*v__c5 + v__c18*v__c8 + 18.0*v_rb*v__c2*v_q4 + v__s8*v__c3*v__c4 + v__s4*v__c3 + v__s9*v__c4);
 }
 /* _fkchart1_step1_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step1_v1_shape[4] = {10, 3, 1, 107};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step1_v1_shape[4] = {10, 3, 1, 90};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step1_v1_numbers[] = {0};
 void bonered_rows__fkchart1_step1_v1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1401,7 +1401,7 @@ BF_INLINE void _fkchart1_step2_g(double v_q1, double v_q2, double v_q3, double v
     out[2] = v__c0*v__c27 + v__s2*v__c0 + v__c1*v__c27 + v__s2*v__c1 + v__c13*v__c33 + v__c14*v__c33 + v__c15*v__c24 + v__c15*v__c35 - v__c15*v__c36 - v__c15*v__c37 + v__c15*v__c38*v_v2 + v__s21*v__c16 + v__s22*v__c16*v_v2 + v__s14*v__c18 + v__s16*v__c18*v_v2 + v__s3*v__c19 + v__s18*v__c2 + v__s19*v__c2*v_v2 + v__c20*v__c31 + v__s15*v__c20*v__c9 + v__s8*v__c20 + v__s20*v__c21*v__c4 + v__s19*v__c21 + v__s22*v__c22*v__c5 + v__s23*v__c22 + v__c23*v__c8 + v__c23*v__c9 + v__c24*v__c4 + v__c25*v__c6 + v__c25*v__c8 + v__c26*v__c6 + v__c26*v__c9 - v__c28*v__c29*v_q4 + v__c28*v__c38 + v__s9*v__c28 + v__s5*v__c3*v_v2 + v__s6*v__c3 + v__c30*v__c4*v_q4 + v__c30*v__c6 - v__c30*v__c9 + v__c31*v__c32 + v__s15*v__c32*v__c8 + v__c34*v__c8 + v__c34*v__c9 + v__c35*v__c5 + v__c36*v__c5 + v__c37*v__c4 + v__s4*v__c4 + v__s4*v__c5;
 }
 /* _fkchart1_step2_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart1_step2_g_shape[4] = {11, 3, 1, 219};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart1_step2_g_shape[4] = {11, 3, 1, 182};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart1_step2_g_numbers[] = {0};
 void bonered_rows__fkchart1_step2_g(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1502,7 +1502,7 @@ BF_INLINE void _fkchart2_step0_v1(double v_q1, double v_q2, double v_q3, double 
     out[2] = 0.0;
 }
 /* _fkchart2_step0_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart2_step0_v1_shape[4] = {9, 3, 1, 242};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step0_v1_shape[4] = {9, 3, 1, 194};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart2_step0_v1_numbers[] = {2};
 void bonered_rows__fkchart2_step0_v1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1564,7 +1564,7 @@ BF_INLINE void _fkchart2_step1_v2(double v_q1, double v_q2, double v_q3, double 
     out[2] = v_v1*(v__s4*v__c0 + v__s5*v__c1 + v__c10*v__c15 + v__c10*v__c18 + v__c12*v__c15 + v__c12*v__c17 + v__s10*v__c14 + v__c15*v__c16 + v__c16*v__c17 + v__c16*v__c18 + v__s13*v__c2 + v__s12*v__c4 - 18.0*v_rb*v__c4*v_q5 + v__s7*v__c5*v__c7 + v__s6*v__c7 + v__s11*v__c9);
 }
 /* _fkchart2_step1_v2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart2_step1_v2_shape[4] = {10, 3, 1, 108};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step1_v2_shape[4] = {10, 3, 1, 86};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart2_step1_v2_numbers[] = {0};
 void bonered_rows__fkchart2_step1_v2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1642,7 +1642,7 @@ BF_INLINE void _fkchart2_step2_g(double v_q1, double v_q2, double v_q3, double v
     out[2] = -v__c0*v__c18 + v__s4*v__c0 + v__c1*v__c18 + v__s4*v__c1 - v__c10*v__c26 + v__s4*v__c10 + v__c11*v__c26 + v__s4*v__c11 + v__s12*v__c12*v_q5 + v__s12*v__c13 + v__s12*v__c14 + v__c15*v_q5 + v__c15*v_q6 + v__c16*v_q5 + v__c16*v_q6 + v__c17*v__c27*v__c6 + v__c17*v__c28 + v__s8*v__c17*v_q6 + v__s9*v__c17 + v__c19*v__c27 + v__s10*v__c19 + 8.0*v__c19*v_q4 - 12.0*v__c2*v__c24 + v__s12*v__c2*v__c4 + v__s11*v__c2 + v__s5*v__c2*v_v1 + v__c20*v__c7 + v__c20*v__c9 + v__c21*v__c22 + v__c21*v__c7 + v__s18*v__c23*v_q4 + v__s5*v__c23 + v__s18*v__c24*v_q5 + v__s8*v__c24 - v__c25*v_q4 + v__c25*v_q6 - v__c26*v__c7*v_q5 + v__c28*v_q5*v_v1 + v__s6*v__c4 + v__s7*v__c5 + v__s7*v__c6 - 8.0*v__c7*v_q6*v_v1;
 }
 /* _fkchart2_step2_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkchart2_step2_g_shape[4] = {11, 3, 1, 186};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkchart2_step2_g_shape[4] = {11, 3, 1, 156};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkchart2_step2_g_numbers[] = {0};
 void bonered_rows__fkchart2_step2_g(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1651,6 +1651,281 @@ void bonered_rows__fkchart2_step2_g(long n, const double *const *in, const long 
         double o[3];
         _fkchart2_step2_g(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], o);
         for (int m = 0; m < 3; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Coefficients C_ij[a][b] of u_i^a u_j^b in e12, e23, e31 (row-major). */
+BF_INLINE void _rps_coefficients(double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_d, double *restrict out)
+{
+    const double v__c0 = v_q1*v_q2;
+    const double v__c1 = 2.0*v__c0;
+    const double v__c2 = (v_q1*v_q1);
+    const double v__c3 = -3.0*(v_rb*v_rb);
+    const double v__c4 = 3.0*(v_ra*v_ra);
+    const double v__c5 = v__c3 + v__c4 + (v_q2*v_q2);
+    const double v__c6 = v__c2 + v__c5;
+    const double v__c7 = -v__c1 + v__c6;
+    const double v__c8 = 6.0*v_ra;
+    const double v__c9 = -v__c8*v_q2;
+    const double v__c10 = v__c1 + v__c6;
+    const double v__c11 = v__c8*v_q1;
+    const double v__c12 = v_q2*v_q3;
+    const double v__c13 = 2.0*v__c12;
+    const double v__c14 = (v_q3*v_q3);
+    const double v__c15 = v__c14 + v__c5;
+    const double v__c16 = -v__c13 + v__c15;
+    const double v__c17 = v__c8*v_q3;
+    const double v__c18 = v__c13 + v__c15;
+    const double v__c19 = v_q1*v_q3;
+    const double v__c20 = 2.0*v__c19;
+    const double v__c21 = v__c14 + v__c2 + v__c3 + v__c4;
+    const double v__c22 = -v__c20 + v__c21;
+    const double v__c23 = v__c20 + v__c21;
+    out[0] = v__c7;
+    out[1] = v__c9;
+    out[2] = v__c10;
+    out[3] = v__c11;
+    out[4] = -4.0*v__c0;
+    out[5] = v__c11;
+    out[6] = v__c10;
+    out[7] = v__c9;
+    out[8] = v__c7;
+    out[9] = v__c16;
+    out[10] = v__c17;
+    out[11] = v__c18;
+    out[12] = v__c9;
+    out[13] = -4.0*v__c12;
+    out[14] = v__c9;
+    out[15] = v__c18;
+    out[16] = v__c17;
+    out[17] = v__c16;
+    out[18] = v__c22;
+    out[19] = v__c11;
+    out[20] = v__c23;
+    out[21] = v__c17;
+    out[22] = 4.0*v__c19;
+    out[23] = v__c17;
+    out[24] = v__c23;
+    out[25] = v__c11;
+    out[26] = v__c22;
+}
+/* _rps_coefficients on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_coefficients_shape[4] = {9, 27, 0, 31};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_coefficients_numbers[] = {-1};
+void bonered_rows__rps_coefficients(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[27];
+        _rps_coefficients(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], o);
+        for (int m = 0; m < 27; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* e12, e23, e31 and their Jacobian in the revolute tan-half angles. */
+BF_INLINE void _rps_equations(double v_u1, double v_u2, double v_u3, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_d, double *restrict out)
+{
+    const double v__c0 = (v_q1*v_q1);
+    const double v__c1 = (v_u2*v_u2);
+    const double v__c2 = v__c0*v__c1;
+    const double v__c3 = (v_q2*v_q2);
+    const double v__c4 = (v_u1*v_u1);
+    const double v__c5 = v__c3*v__c4;
+    const double v__c6 = 2.0*v_q2;
+    const double v__c7 = v__c6*v_q1;
+    const double v__c8 = v__c0*v__c4;
+    const double v__c9 = (v_rb*v_rb);
+    const double v__c10 = 3.0*v__c9;
+    const double v__c11 = v__c10*v__c4;
+    const double v__c12 = v__c4*v__c7;
+    const double v__c13 = (v_ra*v_ra);
+    const double v__c14 = 3.0*v__c13;
+    const double v__c15 = v__c14*v__c4;
+    const double v__c16 = 6.0*v_ra;
+    const double v__c17 = v__c16*v_q2;
+    const double v__c18 = v__c17*v_u2;
+    const double v__c19 = 4.0*v_q2;
+    const double v__c20 = v__c19*v_q1;
+    const double v__c21 = v__c20*v_u2;
+    const double v__c22 = 6.0*v_u1;
+    const double v__c23 = v_q1*v_ra;
+    const double v__c24 = v__c22*v__c23;
+    const double v__c25 = -v__c10;
+    const double v__c26 = v__c1*v__c3;
+    const double v__c27 = v__c1*v__c10;
+    const double v__c28 = v__c1*v__c14;
+    const double v__c29 = v__c14 - v__c18 + v__c25 + v__c26 - v__c27 + v__c28 + v__c3;
+    const double v__c30 = v__c0 - v__c11 + v__c15 + v__c24 + v__c8;
+    const double v__c31 = (v_u3*v_u3);
+    const double v__c32 = v__c3*v__c31;
+    const double v__c33 = (v_q3*v_q3);
+    const double v__c34 = v__c1*v__c33;
+    const double v__c35 = v__c6*v_q3;
+    const double v__c36 = v__c1*v__c35;
+    const double v__c37 = v__c19*v_q3;
+    const double v__c38 = v__c37*v_u3;
+    const double v__c39 = v__c16*v_q3;
+    const double v__c40 = v__c39*v_u3;
+    const double v__c41 = v__c31*v__c33;
+    const double v__c42 = -v__c10*v__c31 + v__c14*v__c31 + v__c33 + v__c40 + v__c41;
+    const double v__c43 = v__c0*v__c31;
+    const double v__c44 = v__c33*v__c4;
+    const double v__c45 = v_q1*v_q3;
+    const double v__c46 = 2.0*v__c45;
+    const double v__c47 = v__c4*v__c46;
+    const double v__c48 = 4.0*v__c45;
+    const double v__c49 = v__c48*v_u1;
+    const double v__c50 = 2.0*v_u1;
+    const double v__c51 = v__c22*v__c9;
+    const double v__c52 = v__c20*v_u1;
+    const double v__c53 = v__c16*v_q1;
+    const double v__c54 = v__c13*v__c22;
+    const double v__c55 = 12.0*v_u1;
+    const double v__c56 = v__c55*v_u2;
+    const double v__c57 = v_q2*v_ra;
+    const double v__c58 = v__c0*v__c50 - v__c51 + v__c53 + v__c54;
+    const double v__c59 = 2.0*v_u2;
+    const double v__c60 = 6.0*v_u2;
+    const double v__c61 = v__c60*v__c9;
+    const double v__c62 = v__c13*v__c60;
+    const double v__c63 = -v__c17 + v__c3*v__c59 - v__c61 + v__c62;
+    const double v__c64 = v__c37*v_u2;
+    const double v__c65 = 12.0*v_u2*v_u3;
+    const double v__c66 = v_q3*v_ra;
+    const double v__c67 = 2.0*v_u3;
+    const double v__c68 = 6.0*v_u3;
+    const double v__c69 = v__c68*v__c9;
+    const double v__c70 = v__c13*v__c68;
+    const double v__c71 = v__c33*v__c67 + v__c39 - v__c69 + v__c70;
+    const double v__c72 = v__c55*v_u3;
+    const double v__c73 = v__c48*v_u3;
+    const double v__c74 = v__c49 + v__c73;
+    out[0] = -v__c1*v__c11 - v__c1*v__c12 + v__c1*v__c15 + v__c1*v__c24 + v__c1*v__c5 + v__c1*v__c7 + v__c1*v__c8 + v__c12 - v__c18*v__c4 + v__c2 - v__c21*v_u1 + v__c29 + v__c30 + v__c5 - v__c7;
+    out[1] = v__c1*v__c40 - v__c18*v__c31 + v__c26*v__c31 - v__c27*v__c31 + v__c28*v__c31 + v__c29 + v__c31*v__c34 + v__c31*v__c35 - v__c31*v__c36 + v__c32 + v__c34 - v__c35 + v__c36 - v__c38*v_u2 + v__c42;
+    out[2] = -v__c11*v__c31 + v__c14 + v__c15*v__c31 + v__c24*v__c31 + v__c25 + v__c30 + v__c31*v__c46 - v__c31*v__c47 + v__c31*v__c8 + v__c4*v__c40 + v__c4*v__c41 + v__c42 + v__c43 + v__c44 - v__c46 + v__c47 + v__c49*v_u3;
+    out[3] = -v__c1*v__c51 - v__c1*v__c52 + v__c1*v__c53 + v__c1*v__c54 + v__c2*v__c50 - v__c21 + v__c26*v__c50 + v__c3*v__c50 + v__c52 - v__c56*v__c57 + v__c58;
+    out[4] = v__c0*v__c59 - v__c17*v__c4 - v__c21*v__c4 + v__c21 + v__c23*v__c56 - v__c4*v__c61 + v__c4*v__c62 + v__c5*v__c59 - v__c52 + v__c59*v__c8 + v__c63;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = -v__c17*v__c31 - v__c31*v__c61 + v__c31*v__c62 - v__c31*v__c64 + v__c32*v__c59 + v__c33*v__c59 - v__c38 + v__c41*v__c59 + v__c63 + v__c64 + v__c65*v__c66;
+    out[8] = -v__c1*v__c38 + v__c1*v__c39 - v__c1*v__c69 + v__c1*v__c70 + v__c26*v__c67 + v__c3*v__c67 + v__c34*v__c67 + v__c38 - v__c57*v__c65 - v__c64 + v__c71;
+    out[9] = -v__c31*v__c49 - v__c31*v__c51 + v__c31*v__c53 + v__c31*v__c54 + v__c33*v__c50 + v__c41*v__c50 + v__c43*v__c50 + v__c58 + v__c66*v__c72 + v__c74;
+    out[10] = 0.0;
+    out[11] = v__c0*v__c67 + v__c23*v__c72 + v__c39*v__c4 - v__c4*v__c69 + v__c4*v__c70 - v__c4*v__c73 + v__c44*v__c67 + v__c67*v__c8 + v__c71 + v__c74;
+}
+/* _rps_equations on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_equations_shape[4] = {12, 12, 3, 269};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_equations_numbers[] = {5, 6, 10};
+void bonered_rows__rps_equations(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[12];
+        _rps_equations(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], o);
+        for (int m = 0; m < 12; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Spherical joint centres B_k in the closure's base frame. */
+BF_INLINE void _rps_centres(double v_u1, double v_u2, double v_u3, double v_q1, double v_q2, double v_q3, double v_q4, double v_q5, double v_q6, double v_ra, double v_rb, double v_d, double *restrict out)
+{
+    const double v__c0 = (v_u1*v_u1);
+    const double v__c1 = (1.0/((24.0*v__c0 + 24.0)));
+    const double v__c2 = 1.7320508075688772;
+    const double v__c3 = 12.0*v_ra;
+    const double v__c4 = v__c2*v__c3;
+    const double v__c5 = 24.0*v_q1*v_u1;
+    const double v__c6 = (v_u2*v_u2);
+    const double v__c7 = (1.0/((v__c6 + 1.0)));
+    const double v__c8 = (v_u3*v_u3);
+    const double v__c9 = (1.0/((24.0*v__c8 + 24.0)));
+    const double v__c10 = 24.0*v_q3*v_u3;
+    out[0] = v__c1*(v__c0*v__c4 + v__c2*v__c5 + v__c4);
+    out[1] = v__c1*(-v__c0*v__c3 - v__c3 - v__c5);
+    out[2] = (-v__c0*v_q1 + v_q1)/(v__c0 + 1.0);
+    out[3] = 0.0;
+    out[4] = v__c7*(v__c6*v_ra - 2.0*v_q2*v_u2 + v_ra);
+    out[5] = v__c7*(-v__c6*v_q2 + v_q2);
+    out[6] = v__c9*(-v__c10*v__c2 - v__c4*v__c8 - v__c4);
+    out[7] = v__c9*(-v__c10 - v__c3*v__c8 - v__c3);
+    out[8] = (-v__c8*v_q3 + v_q3)/(v__c8 + 1.0);
+}
+/* _rps_centres on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_centres_shape[4] = {12, 9, 1, 53};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_centres_numbers[] = {3};
+void bonered_rows__rps_centres(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[9];
+        _rps_centres(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], o);
+        for (int m = 0; m < 9; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Spherical joint centres P_k in the platform frame. */
+BF_INLINE void _rps_platform(double v_ra, double v_rb, double v_d, double *restrict out)
+{
+    const double v__c0 = (0.5)*v_rb;
+    const double v__c1 = 1.7320508075688772*v__c0;
+    const double v__c2 = -v__c0;
+    out[0] = v__c1;
+    out[1] = v__c2;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = v_rb;
+    out[5] = 0.0;
+    out[6] = -v__c1;
+    out[7] = v__c2;
+    out[8] = 0.0;
+}
+/* _rps_platform on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_platform_shape[4] = {3, 9, 9, 0};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_platform_numbers[] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+void bonered_rows__rps_platform(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[9];
+        _rps_platform(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], o);
+        for (int m = 0; m < 9; m++)
+            out[m][i] = o[m];
+    }
+}
+
+/* Study coordinates (chart x0 = 1) of the platform from R (row-major) and t. */
+BF_INLINE void _rps_study(double v_r0, double v_r1, double v_r2, double v_r3, double v_r4, double v_r5, double v_r6, double v_r7, double v_r8, double v_t0, double v_t1, double v_t2, double *restrict out)
+{
+    const double v__c0 = -v_r5 + v_r7;
+    const double v__c1 = v_r0 + v_r4 + v_r8 + 1.0;
+    const double v__c2 = (1.0/(v__c1));
+    const double v__c3 = v_r2 - v_r6;
+    const double v__c4 = -v_r1 + v_r3;
+    const double v__c5 = (0.5)*v_t0;
+    const double v__c6 = (0.5)*v__c4;
+    const double v__c7 = (0.5)*v_t2;
+    out[0] = v__c0*v__c2;
+    out[1] = v__c2*v__c3;
+    out[2] = v__c2*v__c4;
+    out[3] = v__c2*(v__c0*v__c5 + (0.5)*v__c3*v_t1 + v__c6*v_t2);
+    out[4] = v__c2*(-v__c1*v__c5 + (0.5)*v__c3*v_t2 - v__c6*v_t1);
+    out[5] = v__c2*(-v__c0*v__c7 - 0.5*v__c1*v_t1 + (0.5)*v__c4*v_t0);
+    out[6] = v__c2*((0.5)*v__c0*v_t1 - v__c1*v__c7 - v__c3*v__c5);
+}
+/* _rps_study on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
+const int bonered_rows__rps_study_shape[4] = {12, 7, 0, 42};  /* in, out, outputs of the parameters alone, array operations */
+const int bonered_rows__rps_study_numbers[] = {-1};
+void bonered_rows__rps_study(long n, const double *const *in, const long *step,
+                   double *const *out)
+{
+    for (long i = 0; i < n; i++) {
+        double o[7];
+        _rps_study(in[0][i * step[0]], in[1][i * step[1]], in[2][i * step[2]], in[3][i * step[3]], in[4][i * step[4]], in[5][i * step[5]], in[6][i * step[6]], in[7][i * step[7]], in[8][i * step[8]], in[9][i * step[9]], in[10][i * step[10]], in[11][i * step[11]], o);
+        for (int m = 0; m < 7; m++)
             out[m][i] = o[m];
     }
 }
@@ -1701,7 +1976,7 @@ BF_INLINE void _fk_newton(double v_g, double v_v1, double v_v2, double v_q1, dou
     out[15] = -v__c15 + v__s4;
 }
 /* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fk_newton_shape[4] = {12, 16, 5, 73};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fk_newton_shape[4] = {12, 16, 5, 61};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fk_newton_numbers[] = {0, 4, 5, 6, 9};
 void bonered_rows__fk_newton(long n, const double *const *in, const long *step,
                    double *const *out)

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a6c3402de4afad9f913c75b5240ce748b6cedc7126998d1640f9626cf400365a
+ * Derivation hash: abf0f35c99626cccd4e727c10db14b07dcc5af41af0aad78981c95687c7d229f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a6c3402de4afad9f913c75b5240ce748b6cedc7126998d1640f9626cf400365a";
+const char bonered_derivation_hash[] = "abf0f35c99626cccd4e727c10db14b07dcc5af41af0aad78981c95687c7d229f";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -355,7 +355,7 @@ BF_INLINE void _fkstep0_w1(double v_a1, double v_a2, double v_b1, double v_b2, d
     out[2] = -v_a1;
 }
 /* _fkstep0_w1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep0_w1_shape[4] = {15, 3, 2, 1};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep0_w1_shape[4] = {15, 3, 2, 1};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep0_w1_numbers[] = {0, 1};
 void bonered_rows__fkstep0_w1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -377,7 +377,7 @@ BF_INLINE void _fkstep1_w2(double v_a1, double v_a2, double v_b1, double v_b2, d
     out[2] = -v__c0;
 }
 /* _fkstep1_w2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep1_w2_shape[4] = {16, 3, 0, 11};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep1_w2_shape[4] = {16, 3, 0, 11};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep1_w2_numbers[] = {-1};
 void bonered_rows__fkstep1_w2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -485,7 +485,7 @@ BF_INLINE void _fkstep2_d1(double v_a1, double v_a2, double v_b1, double v_b2, d
     out[2] = v__s28*v__c0*v__c4 + v__c19*v__c24 + v__c19*v__c25 + v__c19*v__c26 + v__c19*v__c28 + v__c19*v__c30 + v__s23*v__c19 + v__c24 + v__c25 + v__c26 + v__c27*v__c9 + v__c27 + v__c28 + v__c30 + v__c31*v__c9 + v__c31 + v__s27*v__c4 + v__s23;
 }
 /* _fkstep2_d1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep2_d1_shape[4] = {17, 3, 0, 169};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep2_d1_shape[4] = {17, 3, 0, 118};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep2_d1_numbers[] = {-1};
 void bonered_rows__fkstep2_d1(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -599,7 +599,7 @@ BF_INLINE void _fkstep3_d2(double v_a1, double v_a2, double v_b1, double v_b2, d
     out[2] = v__s26*v__c0*v__c5 + v__c13*v__c34 + v__c13*v__c35 + v__c13*v__c37 + v__c13*v__c38 + v__c13*v__c40 + v__s21*v__c13 + v__c20*v__c36 + v__c20*v__c41 + v__c34 + v__c35 + v__c36 + v__c37 + v__c38 + v__c40 + v__c41 + v__s25*v__c5 + v__s21;
 }
 /* _fkstep3_d2 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fkstep3_d2_shape[4] = {18, 3, 0, 176};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fkstep3_d2_shape[4] = {18, 3, 0, 130};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fkstep3_d2_numbers[] = {-1};
 void bonered_rows__fkstep3_d2(long n, const double *const *in, const long *step,
                    double *const *out)
@@ -1368,7 +1368,7 @@ BF_INLINE void _fk_newton(double v_w1, double v_w2, double v_d1, double v_d2, do
     out[54] = v__c11*v__c190 + v__s219*v__c130*v__c263 + v__c130*v__c276 + 4.0*v__c149 + v__s222*v__c150*v__c166 + v__s218*v__c150*v__c90 + 4.0*v__c160 + 4.0*v__c161 + v__c164*v__c2 + v__c173*v__c279 + 12.0*v__c176*v__c218 + v__c179*v__c275 + v__c184 + v__c19*v__c195 + v__c190 + v__c192*v_w1 + v__c2*v__c285*v__c66 + v__c207*v__c286 + v__c208*v__c216 + v__c209 + v__s221*v__c218 + v__s145*v__c231 + v__s219*v__c232 + v__s133*v__c233 + v__s135*v__c239 + v__s223*v__c242 + v__s216*v__c274 + v__c277*v__c286 + v__s180*v__c280 + v__c285*v__c88 + v__c287*v__c70 + v__c287*v__c95 + 12.0*v_loa2*v__c51*v_w2 + v__s216*v__c62 + v__s220*v__c88*v_w1 + v__s217*v__c91 + v__s178*v__c94;
 }
 /* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
-const int bonered_rows__fk_newton_shape[4] = {19, 55, 16, 1884};  /* in, out, outputs of the parameters alone, operations */
+const int bonered_rows__fk_newton_shape[4] = {19, 55, 16, 1524};  /* in, out, outputs of the parameters alone, array operations */
 const int bonered_rows__fk_newton_numbers[] = {11, 12, 13, 14, 15, 18, 21, 22, 25, 29, 33, 37, 41, 45, 49, 53};
 void bonered_rows__fk_newton(long n, const double *const *in, const long *step,
                    double *const *out)

@@ -303,28 +303,39 @@ def _bits_equal(a, b):
 @pytest.mark.parametrize("name", FK_NAMES)
 def test_compiled_fk_kernels_are_the_numpy_kernels_to_the_bit(name):
     """Every kernel forward kinematics evaluates through the library (the back-substitution
-    steps of every chart and the Newton system: ``bonered_rows_<name>``) returns the numpy
-    kernel's numbers bit for bit: the same program, operation for operation (integer powers
-    as products in both, SMALL_POWER), on arguments from 1e-3 to 1e3 in magnitude and of
-    both signs, arrays and numbers mixed; its numbers are numbers where numpy's are."""
+    steps of every chart, the Newton system and the 3-RPS kernels: ``bonered_rows_<name>``)
+    returns the numpy kernel's numbers bit for bit: the same program, operation for
+    operation (integer powers as products in both, SMALL_POWER), on arguments from 1e-3 to
+    1e3 in magnitude and of both signs, arrays and numbers mixed; its numbers are numbers
+    where numpy's are.  A kernel below ROW_KERNEL_MIN_OPERATIONS stays numpy."""
+    import ctypes
+    import inspect
+
     m = _module(name)
     fast, spec = m._MODEL.fast, m._MODEL.fk
     kernels = [k for rows, _ in ((spec.steps, None), *spec.charts) for _, k, _ in rows]
     kernels += [spec.newton] if spec.newton is not None else []
+    if spec.rps is not None:
+        kernels += [getattr(spec.rps, f) for f in ("coefficients", "equations", "centres",
+                                                   "platform", "study")]
     assert kernels
     rng = np.random.default_rng(15)
-    par = [float(v) for v in m.PARAMETERS.values()]
     twins = 0
     for kern in kernels:
         twin = fast.rows(kern)
         if twin is None:  # numpy's cost per call below the twin's: numpy
-            assert m.OPERATIONS[kern.__name__] < compiled.ROW_KERNEL_MIN_OPERATIONS
+            shape = (ctypes.c_int * 4).in_dll(fast.library(),
+                                              f"bonered_rows_{kern.__name__}_shape")
+            assert shape[3] < compiled.ROW_KERNEL_MIN_OPERATIONS  # operations on arrays
             continue
         twins += 1
-        n = twin.n_in - len(par)
-        args = [rng.choice([-1, 1], 300) * 10.0 ** rng.uniform(-3, 3, 300) for _ in range(n)]
-        args[0] = args[0][:1]  # broadcast from one row
-        for a, b in zip(kern(*args, *par), twin(*args, *par)):
+        args = [m.PARAMETERS[a] if a in m.PARAMETERS
+                else rng.choice([-1, 1], 300) * 10.0 ** rng.uniform(-3, 3, 300)
+                for a in inspect.signature(kern).parameters]
+        assert len(args) == twin.n_in
+        first = next(i for i, a in enumerate(args) if np.ndim(a))
+        args[first] = args[first][:1]  # broadcast from one row
+        for a, b in zip(kern(*args), twin(*args)):
             assert isinstance(b, float) == isinstance(a, float), kern.__name__
             assert _bits_equal(np.broadcast_to(a, (300,)), np.broadcast_to(b, (300,))), \
                 kern.__name__

@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
+from ..algebra import polyring as pr
 from ..runtime.backsubstitution import step_mode_bits
 from .kernels import Kernel, c_function, c_values, shareable_functions, shared_functions
 
@@ -365,31 +366,37 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
         for k in row_kernels:
             if not k.c_source:
                 raise ValueError(f"{name}: row kernel {k.name} has no C source")
-            rows_block += [k.c_source.rstrip("\n"), *_row_entry(k)]
+            rows_block += [k.c_source.rstrip("\n"), *_row_entry(k, parameters)]
         rows_block += _part_end()
     return "\n".join(lines + jac_block + rows_block + body) + "\n"
 
 
-def _row_entry(k: Kernel) -> list[str]:
+def _row_entry(k: Kernel, parameters: Sequence[str]) -> list[str]:
     """``bonered_rows_<name>``: kernel ``k`` on ``n`` rows, argument j of row i read at
     ``in[j][i * step[j]]`` (step 0: one value for every row, e.g. a parameter) and output
-    m written to ``out[m][i]`` (:meth:`bonered_alg.runtime.compiled.FastPath.rows`)."""
+    m written to ``out[m][i]`` (:meth:`bonered_alg.runtime.compiled.FastPath.rows`).
+    ``parameters``: the geometric parameters, numbers on the fast path (which takes no
+    parameters given as arrays)."""
     nargs, nout = len(k.arguments), k.outputs
     args = ", ".join(f"in[{j}][i * step[{j}]]" for j in range(nargs))
     # the outputs of the parameters alone (numbers among them): the numpy kernel returns
     # them as numbers, not arrays (a step's B = 0 then takes the distance-leg rule), and so
     # does the runtime's twin
     _, subs, reduced = k.program
-    scalar = set(k.scalars)
+    scalar = set(k.scalars) | set(parameters)
+    array_ops = 0  # what numpy pays per call: its operations on arrays (not the preludes')
     for sym, e in subs:
         if {str(v) for v in sp.sympify(e).free_symbols} <= scalar:
             scalar.add(str(sym))
+        else:
+            array_ops += pr.count_ops(e)
     numbers = [m for m, e in enumerate(reduced)
                if {str(v) for v in sp.sympify(e).free_symbols} <= scalar]
+    array_ops += sum(pr.count_ops(e) for m, e in enumerate(reduced) if m not in numbers)
     return [
         f"/* {k.name} on n rows (bonered_alg.runtime.compiled.FastPath.rows) */",
         f"const int bonered_rows_{k.name}_shape[4] = {{{nargs}, {nout}, {len(numbers)}, "
-        f"{k.operations}}};  /* in, out, outputs of the parameters alone, operations */",
+        f"{array_ops}}};  /* in, out, outputs of the parameters alone, array operations */",
         f"const int bonered_rows_{k.name}_numbers[] = {{{', '.join(map(str, numbers)) or '-1'}}};",
         f"void bonered_rows_{k.name}(long n, const double *const *in, const long *step,",
         "                   double *const *out)",

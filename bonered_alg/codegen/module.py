@@ -355,7 +355,9 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
                           tuple(list(spec.fk_unknowns).index(st.joint) for st in chart)))
     has_fk = bool(spec.fk_steps or spec.rps)
     if spec.rps:
-        kernels += RPSEliminant().kernels(spec.rps, spec.joints, par)
+        rps_kernels = RPSEliminant().kernels(spec.rps, spec.joints, par)
+        kernels += rps_kernels
+        row_kernels += rps_kernels
     if has_fk:
         kernels.append(kernel("_fk_pose", [*spec.rps_unknowns, *spec.fk_unknowns, *par],
                               [spec.study_to_pose[x] for x in spec.pose],

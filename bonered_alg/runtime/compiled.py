@@ -44,8 +44,9 @@ HEADER_DIR = Path(__file__).resolve().parent / "c"
 C_ABI = 3
 # poses per thread below which one thread does the whole batch
 MIN_PER_THREAD = 20_000
-# numpy operations of a kernel below which its compiled twin (FastPath.rows) is not used:
-# on a few rows numpy costs about a microsecond per operation, the twin's wrapper about 20
+# numpy operations on arrays of a kernel (its scalar preludes, Python floats, cost little)
+# below which its compiled twin (FastPath.rows) is not used: on a few rows numpy costs
+# about a microsecond per array operation, the twin's wrapper 20-50
 ROW_KERNEL_MIN_OPERATIONS = 40
 
 _lock = threading.Lock()
@@ -371,8 +372,8 @@ class FastPath:
             fn = getattr(lib, f"bonered_rows_{name}", None) if lib is not None else None
             if fn is not None:
                 shape = (ctypes.c_int * 4).in_dll(lib, f"bonered_rows_{name}_shape")
-                n_in, n_out, n_numbers, operations = (int(v) for v in shape)
-                if operations < ROW_KERNEL_MIN_OPERATIONS:
+                n_in, n_out, n_numbers, array_ops = (int(v) for v in shape)
+                if array_ops < ROW_KERNEL_MIN_OPERATIONS:
                     fn = None  # numpy's cost per call is below the wrapper's
                 else:
                     fn.restype = None
@@ -387,16 +388,21 @@ class FastPath:
 
     def forward_kinematics(self, fk):
         """``fk`` (a :class:`~.model.ForwardKinematics`) with its back-substitution steps,
-        charts and Newton system evaluated by their compiled twins (:meth:`rows`) where the
-        library has them; kept for the next call."""
+        charts, Newton system and 3-RPS kernels evaluated by their compiled twins
+        (:meth:`rows`) where the library has them; kept for the next call."""
         if self._fk is not None and self._fk[0] is fk:
             return self._fk[1]
 
         def steps(rows):
             return tuple((degree, self.rows(kern) or kern, bit) for degree, kern, bit in rows)
 
+        rps = fk.rps
+        if rps is not None:
+            rps = dataclasses.replace(rps, **{
+                f.name: self.rows(getattr(rps, f.name)) or getattr(rps, f.name)
+                for f in dataclasses.fields(rps)})
         out = dataclasses.replace(
-            fk, steps=steps(fk.steps),
+            fk, steps=steps(fk.steps), rps=rps,
             charts=tuple((steps(rows), index) for rows, index in fk.charts),
             newton=None if fk.newton is None else (self.rows(fk.newton) or fk.newton))
         self._fk = (fk, out)

@@ -87,7 +87,8 @@ class RPSEliminant:
 
     def kernels(self, rps, joints, par) -> list:
         """The kernels of the runtime step (``runtime.rps``): coefficients, equations and
-        Jacobian, centres, platform points, Study point from (R, t)."""
+        Jacobian, centres, platform points, Study point from (R, t); rational functions,
+        also printed as C (the compiled fast path's twins, ``codegen.c_module``)."""
         u = list(rps.angles)
         eqs = sp.Matrix(list(rps.equations))
         rot = sp.Matrix(3, 3, sp.symbols("r0:9", real=True))
@@ -97,15 +98,18 @@ class RPSEliminant:
         return [
             kernel("_rps_coefficients", [*joints, *par],
                    [e for m in rps.coefficients for row in m for e in row],
-                   "Coefficients C_ij[a][b] of u_i^a u_j^b in e12, e23, e31 (row-major)."),
+                   "Coefficients C_ij[a][b] of u_i^a u_j^b in e12, e23, e31 (row-major).",
+                   c=True),
             kernel("_rps_equations", [*u, *joints, *par], list(eqs) + list(eqs.jacobian(u)),
-                   "e12, e23, e31 and their Jacobian in the revolute tan-half angles."),
+                   "e12, e23, e31 and their Jacobian in the revolute tan-half angles.",
+                   c=True),
             kernel("_rps_centres", [*u, *joints, *par], [e for p in rps.centres for e in p],
-                   "Spherical joint centres B_k in the closure's base frame."),
+                   "Spherical joint centres B_k in the closure's base frame.", c=True),
             kernel("_rps_platform", list(par), [e for p in rps.platform for e in p],
-                   "Spherical joint centres P_k in the platform frame."),
+                   "Spherical joint centres P_k in the platform frame.", c=True),
             kernel("_rps_study", [*rot, *trans], [e / study[0] for e in study[1:]],
-                   "Study coordinates (chart x0 = 1) of the platform from R (row-major) and t."),
+                   "Study coordinates (chart x0 = 1) of the platform from R (row-major) and t.",
+                   c=True),
         ]
 
 
