@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: a31d0305cedaf6c3ceaae1ece7f840f2ea7dd05dff908b65015dc9aaa7c7f7b2
+ * Derivation hash: dcdbf9aab65d973a2bc4e4b2a9afc5d114ca61a2ae0217e6531908ccf972a5fc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "a31d0305cedaf6c3ceaae1ece7f840f2ea7dd05dff908b65015dc9aaa7c7f7b2";
+const char bonered_derivation_hash[] = "dcdbf9aab65d973a2bc4e4b2a9afc5d114ca61a2ae0217e6531908ccf972a5fc";
 int bonered_abi(void) { return 3; }
 #endif
 

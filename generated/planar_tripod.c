@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 4debea06a9ca81604d7b115a915c4ecee08149eb6523ea744f092e1f944eb45d
+ * Derivation hash: e80d890242334c8454bdacf80112114e1b875068b3f277a5087fb2f45f5cb9b8
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "4debea06a9ca81604d7b115a915c4ecee08149eb6523ea744f092e1f944eb45d";
+const char bonered_derivation_hash[] = "e80d890242334c8454bdacf80112114e1b875068b3f277a5087fb2f45f5cb9b8";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5a7eb4454f1a64f8e5548691d82aad41ab01afe2208fd81adfb2ce4431305bf5
+ * Derivation hash: 4d327ee881d21f9aaaca96329672738a2159aee441cc5fb67d22501839bd699b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5a7eb4454f1a64f8e5548691d82aad41ab01afe2208fd81adfb2ce4431305bf5";
+const char bonered_derivation_hash[] = "4d327ee881d21f9aaaca96329672738a2159aee441cc5fb67d22501839bd699b";
 int bonered_abi(void) { return 3; }
 #endif
 

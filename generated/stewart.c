@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 78bafc1f5f4d0e863371e795519b6e531032f8bf76a6e449aeed9ea701b1f3c7
+ * Derivation hash: 69166ad765f9d0581c6311f3e43743916045cf6a361acf51e7c59bb5ec7ecf3c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "78bafc1f5f4d0e863371e795519b6e531032f8bf76a6e449aeed9ea701b1f3c7";
+const char bonered_derivation_hash[] = "69166ad765f9d0581c6311f3e43743916045cf6a361acf51e7c59bb5ec7ecf3c";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: bc724d5d172f3bb01650347706c11c6c5774c857c49b8f4048a0a0c15fa4dcb5
+ * Derivation hash: 7f271f5a0277ac5bdf002d023a6e51bd8eea91cb2bfea16e59ec03fcd5f9d5ff
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "bc724d5d172f3bb01650347706c11c6c5774c857c49b8f4048a0a0c15fa4dcb5";
+const char bonered_derivation_hash[] = "7f271f5a0277ac5bdf002d023a6e51bd8eea91cb2bfea16e59ec03fcd5f9d5ff";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: abf0f35c99626cccd4e727c10db14b07dcc5af41af0aad78981c95687c7d229f
+ * Derivation hash: 78bc5eff8a4a62b02d19b74ae58c7fc4e5697b6e144a713bf7272f06f0888407
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "abf0f35c99626cccd4e727c10db14b07dcc5af41af0aad78981c95687c7d229f";
+const char bonered_derivation_hash[] = "78bc5eff8a4a62b02d19b74ae58c7fc4e5697b6e144a713bf7272f06f0888407";
 int bonered_abi(void) { return 3; }
 #endif
 

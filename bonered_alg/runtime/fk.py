@@ -127,10 +127,10 @@ def verify(spec, q, study, par, status, system=None):
     Gauss-Newton step must change no unknown by more than VERIFY_RTOL (1 + |x|) and no
     equation's residual may exceed RESIDUAL_RTOL of its row, else the mode is UNVERIFIED
     and NaN (a step divided by a pivot near zero: e.g. Pro-Hep-LCT's lower lex basis on
-    t1 = +-w1).  A verified mode where the
-    column-scaled Jacobian is nearly rank deficient is FORWARD_SINGULAR (two assembly modes
-    merge); elsewhere a verified mode is OK even where a quadratic step of the basis had a
-    double root (ON_BOUNDARY there means a double root of the basis, not a boundary)."""
+    t1 = +-w1).  A verified mode where the column-scaled Jacobian is nearly rank deficient
+    is FORWARD_SINGULAR (two assembly modes merge); elsewhere a verified mode is OK even
+    where a quadratic step of the basis had a double root (ON_BOUNDARY there means a double
+    root of the basis, not a boundary)."""
     with numpy.errstate(all="ignore"):
         f, jac = closure_system(spec, q, study, par) if system is None else system
         js, fs, _, finite = equilibrated(f, jac, study)

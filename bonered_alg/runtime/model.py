@@ -756,9 +756,10 @@ class Model:
         return check.coordinates(self, func, q, self.joints, "joints")
 
     def fk_all(self, q, params=None, with_status=False, func="fk", fast=None):
-        """Every assembly mode's pose (and status); the polynomial kernels through the
-        compiled fast path where ``fast`` and the parameters allow (:meth:`_fast_path`:
-        the same numbers, bit for bit), else numpy."""
+        """Every assembly mode's pose (and status); the rational kernels through their
+        compiled twins where ``fast`` and the parameters allow (:meth:`_fast_path`,
+        :meth:`.compiled.FastPath.forward_kinematics`: the same numbers, bit for bit), else
+        numpy."""
         q = self.algebraic(self._fk_joints(func, q))
         par = check.parameters(self, func, params or {})
         compiled = self._fast_path(func, fast, par)
