@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: dcdbf9aab65d973a2bc4e4b2a9afc5d114ca61a2ae0217e6531908ccf972a5fc
+ * Derivation hash: 93ab01d56c35d5b47abe8d348c6305bddfa1b10cc3d332cf1933c6ccb31671d7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "dcdbf9aab65d973a2bc4e4b2a9afc5d114ca61a2ae0217e6531908ccf972a5fc";
+const char bonered_derivation_hash[] = "93ab01d56c35d5b47abe8d348c6305bddfa1b10cc3d332cf1933c6ccb31671d7";
 int bonered_abi(void) { return 3; }
 #endif
 

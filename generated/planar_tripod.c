@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e80d890242334c8454bdacf80112114e1b875068b3f277a5087fb2f45f5cb9b8
+ * Derivation hash: 9603fc119f921fc449a96f7d321f97ef2cb666e1a991a77c4ae49260aa4056d2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e80d890242334c8454bdacf80112114e1b875068b3f277a5087fb2f45f5cb9b8";
+const char bonered_derivation_hash[] = "9603fc119f921fc449a96f7d321f97ef2cb666e1a991a77c4ae49260aa4056d2";
 int bonered_abi(void) { return 3; }
 #endif
 

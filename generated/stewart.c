@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 69166ad765f9d0581c6311f3e43743916045cf6a361acf51e7c59bb5ec7ecf3c
+ * Derivation hash: da4c0565206aff53cca27acc5829fb336ab92efa32852b87f394bee21fca7bfa
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "69166ad765f9d0581c6311f3e43743916045cf6a361acf51e7c59bb5ec7ecf3c";
+const char bonered_derivation_hash[] = "da4c0565206aff53cca27acc5829fb336ab92efa32852b87f394bee21fca7bfa";
 int bonered_abi(void) { return 3; }
 #endif
 

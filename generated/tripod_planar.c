@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 7f271f5a0277ac5bdf002d023a6e51bd8eea91cb2bfea16e59ec03fcd5f9d5ff
+ * Derivation hash: 49e9fbccfc7743e08166ac0fb7fd2e7f045aba0024beeb805cdb0c43f4deae89
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "7f271f5a0277ac5bdf002d023a6e51bd8eea91cb2bfea16e59ec03fcd5f9d5ff";
+const char bonered_derivation_hash[] = "49e9fbccfc7743e08166ac0fb7fd2e7f045aba0024beeb805cdb0c43f4deae89";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 78bc5eff8a4a62b02d19b74ae58c7fc4e5697b6e144a713bf7272f06f0888407
+ * Derivation hash: 32a8aea7a3f7571480eab9e8666957e004357f58f13e113757b6b0f58319a4fb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "78bc5eff8a4a62b02d19b74ae58c7fc4e5697b6e144a713bf7272f06f0888407";
+const char bonered_derivation_hash[] = "32a8aea7a3f7571480eab9e8666957e004357f58f13e113757b6b0f58319a4fb";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -191,12 +191,12 @@ def _rows(a: numpy.ndarray) -> tuple[int, int]:
 
 
 def _address(a: numpy.ndarray) -> int:
-    """The address of a C-contiguous array's first element: ``a.ctypes.data`` (about 1
-    microsecond a call, four calls in each compiled call), through the buffer protocol
-    where the array is writable and not empty (about 0.3)."""
+    """The address of an array's first element: ``a.ctypes.data`` (about 1 microsecond a
+    call, four calls in each compiled call), through the buffer protocol where the array is
+    C-contiguous, writable and not empty (about 0.3)."""
     try:
         return ctypes.addressof(ctypes.c_char.from_buffer(a))
-    except (TypeError, ValueError, BufferError):  # read-only or empty
+    except (TypeError, ValueError, BufferError):  # read-only, empty or strided
         return a.ctypes.data
 
 
@@ -495,7 +495,7 @@ class RowKernel:
         run = max(n, 1 if self.numbers else 0)  # no row: one, for the numbers
         pointers, steps = self._pointers(), self._steps()
         keep = [numpy.array(scalars or [0.0]), numpy.zeros(1)]  # alive through the call
-        address = keep[0].ctypes.data
+        address = _address(keep[0])
         at_arrays, k = {i for i, _ in arrays}, 0
         for j in range(self.n_in):  # the scalar arguments in order: one value for every row
             if j not in at_arrays:
@@ -503,7 +503,7 @@ class RowKernel:
                 k += 1
         for j, a in arrays:
             if n == 0:  # nothing to read: the numbers' row reads a zero
-                pointers[j] = keep[1].ctypes.data
+                pointers[j] = _address(keep[1])
                 continue
             if a.shape != shape:
                 a = numpy.broadcast_to(a, shape)
@@ -512,10 +512,10 @@ class RowKernel:
             if a.strides[0] % 8:
                 a = numpy.ascontiguousarray(a)
             keep.append(a)
-            pointers[j] = a.ctypes.data
+            pointers[j] = _address(a)
             steps[j] = a.strides[0] // 8
         out = numpy.empty((self.n_out, run))
-        rows = out.ctypes.data + self._row_offsets * run  # each output's row
+        rows = _address(out) + self._row_offsets * run  # each output's row
         if run:
-            self.fn(run, pointers, steps, rows.ctypes.data)
+            self.fn(run, pointers, steps, _address(rows))
         return out, shape, n
