@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 93ab01d56c35d5b47abe8d348c6305bddfa1b10cc3d332cf1933c6ccb31671d7
+ * Derivation hash: 80abe2a4389db7684a29f304339943f7799f59f4bbf5cb3a482e78c09c4518d0
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "93ab01d56c35d5b47abe8d348c6305bddfa1b10cc3d332cf1933c6ccb31671d7";
+const char bonered_derivation_hash[] = "80abe2a4389db7684a29f304339943f7799f59f4bbf5cb3a482e78c09c4518d0";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 9603fc119f921fc449a96f7d321f97ef2cb666e1a991a77c4ae49260aa4056d2
+ * Derivation hash: 284462664e9bc34a38eebe7fb8d9891d1952ac8f6483c349d257f7e4cf3391ea
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "9603fc119f921fc449a96f7d321f97ef2cb666e1a991a77c4ae49260aa4056d2";
+const char bonered_derivation_hash[] = "284462664e9bc34a38eebe7fb8d9891d1952ac8f6483c349d257f7e4cf3391ea";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 207525b02894815a68f4be4a9f92054f6b391c052a5dcc9ae21b28aa8126ddb4
+ * Derivation hash: 6d0aaad2dea300ad897f5f77bb12505abdee04d3b1bf114c090daab889109f93
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "207525b02894815a68f4be4a9f92054f6b391c052a5dcc9ae21b28aa8126ddb4";
+const char bonered_derivation_hash[] = "6d0aaad2dea300ad897f5f77bb12505abdee04d3b1bf114c090daab889109f93";
 int bonered_abi(void) { return 3; }
 #endif
 

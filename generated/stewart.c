@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: da4c0565206aff53cca27acc5829fb336ab92efa32852b87f394bee21fca7bfa
+ * Derivation hash: b76766c6ff2e93924b0ff718b9d143cee8f08f50bb6ac1645c2ee220d316db6a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "da4c0565206aff53cca27acc5829fb336ab92efa32852b87f394bee21fca7bfa";
+const char bonered_derivation_hash[] = "b76766c6ff2e93924b0ff718b9d143cee8f08f50bb6ac1645c2ee220d316db6a";
 int bonered_abi(void) { return 3; }
 #endif
 

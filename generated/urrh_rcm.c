@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 32a8aea7a3f7571480eab9e8666957e004357f58f13e113757b6b0f58319a4fb
+ * Derivation hash: 62ff6314bf72ffd46707786c394793b0cc8a72e8d7ffeeaddfb462a1cb6c774b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "32a8aea7a3f7571480eab9e8666957e004357f58f13e113757b6b0f58319a4fb";
+const char bonered_derivation_hash[] = "62ff6314bf72ffd46707786c394793b0cc8a72e8d7ffeeaddfb462a1cb6c774b";
 int bonered_abi(void) { return 3; }
 #endif
 

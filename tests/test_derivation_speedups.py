@@ -88,23 +88,68 @@ def test_no_shared_subtrees_across_the_branches_of_a_piecewise():
 
 
 def test_pose_map_rates_are_the_derivatives():
-    """codegen.module.pose_map_rates (forward mode through the outputs' CSE program) gives
-    the derivatives sympy's diff gives, exactly (cancel of the difference), on a rational
-    map with shared factors like a Study map's (a rotation's half-angle tangents, the
-    translation through them), including outputs that do not depend on every coordinate."""
+    """codegen.module.pose_map_rates (forward mode through the outputs' CSE program, every
+    temporary and rate a named value of a Program) gives the values and the derivatives
+    sympy's diff gives, exactly (cancel of the difference, the program written out), on a
+    rational map with shared factors like a Study map's (a rotation's half-angle tangents,
+    the translation through them), including outputs that do not depend on every
+    coordinate."""
+    from bonered_alg.codegen.kernels import Program
     from bonered_alg.codegen.module import pose_map_rates
 
     x, y, a, b = sp.symbols("x y alpha beta", real=True)
     ta, tb = sp.tan(a / 2), sp.tan(b / 2)
     n = (1 + ta**2) * (1 + tb**2)
     outputs = [ta * tb / n, (x * (1 - ta**2) - 2 * y * ta) / n, (x + y * tb) / (1 + ta * tb),
-               sp.Integer(3), y**2 * tb]
+               sp.Integer(3), y**2 * tb, x]
     pose = [x, y, a, b]
-    rates = pose_map_rates(outputs, pose)
-    for out, row in zip(outputs, rates):
+    program = Program()
+    values, rates = pose_map_rates(outputs, pose, program)
+    assert program.entries  # the shared factors are named, not multiplied out
+    for out, value, row in zip(outputs, program.written_out(values), rates):
+        assert sp.cancel(sp.expand_trig(value - out)) == 0
         assert len(row) == len(pose)
-        for p, r in zip(pose, row):
+        for p, r in zip(pose, program.written_out(row)):
             assert sp.cancel(sp.expand_trig(r - sp.diff(out, p))) == 0
+
+
+def test_a_kernel_with_a_program_computes_what_the_written_out_outputs_do():
+    """codegen.kernels.kernel with ``program`` (named values the outputs read, in
+    dependency order): the entries the outputs need are computed once each, before their
+    readers, an entry that is a number or a symbol is put in its readers' places, one that
+    no output reads is not computed, and the numbers are those of the kernel of the
+    outputs written out."""
+    import numpy as np
+
+    from bonered_alg.codegen.kernels import Program, kernel
+
+    prog = Program()
+    u = prog.name(x * y + 1)
+    v = prog.name(u * u - z)
+    w = prog.name(x)  # an atom: no entry
+    prog.name(sp.sin(z) * u)  # read by no output
+    outs = [v / u + w, u * v * sp.tan(z), sp.Integer(2) * w]
+    k = kernel("_k", [x, y, z], outs, "test", c=True, program=prog.entries)
+    ref = kernel("_ref", [x, y, z], prog.written_out(outs), "test")
+    assert "sin" not in k.source and "sin" not in k.c_source
+    space: dict = {"numpy": np}
+    exec(k.source, space)
+    exec(ref.source, space)
+    rng = np.random.default_rng(3)
+    args = [rng.uniform(-2, 2, 50) for _ in range(3)]
+    for got, want in zip(space["_k"](*args), space["_ref"](*args)):
+        np.testing.assert_allclose(got, want, rtol=1e-13)
+    # every temporary assigned once, before any line that reads it
+    assigned = []
+    for line in k.source.splitlines()[2:]:
+        if " = " in line:
+            name, rhs = line.strip().split(" = ", 1)
+            assert all(t in assigned for t in
+                       {s for s in rhs.replace("(", " ").replace(")", " ").replace("*", " ")
+                        .replace("+", " ").replace("-", " ").replace("/", " ").split()
+                        if s.startswith("_c")})
+            assert name not in assigned
+            assigned.append(name)
 
 
 def test_spurious_factors_are_removed_as_sympy_s_factor_list_removes_them():

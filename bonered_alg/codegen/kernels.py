@@ -321,11 +321,17 @@ def leaner_outputs(outputs: Sequence[sp.Expr], args: Sequence[sp.Symbol],
 
 
 def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc: str,
-           c: bool = False, scalars: Sequence[sp.Symbol] = ()) -> Kernel:
+           c: bool = False, scalars: Sequence[sp.Symbol] = (),
+           program: Sequence[tuple[sp.Symbol, sp.Expr]] = ()) -> Kernel:
     """Emit ``def name(*args): ... return (out0, out1, ...)`` with CSE; with ``c``, also
     ``BF_INLINE void name(double v_arg, ..., double *restrict out)`` from the same program.
-    ``scalars``: the arguments that are one number per call (:func:`scalar_coefficients`)."""
-    exprs = [sp.sympify(o) for o in outputs]
+    ``scalars``: the arguments that are one number per call (:func:`scalar_coefficients`).
+    ``program``: named values ``(symbol, expression)`` in dependency order that the outputs
+    (and later entries) read, such as a forward-mode derivative's values and rates
+    (:class:`Program`); one CSE runs over the entries and the outputs together, and only
+    the entries the outputs need are computed (:func:`_scheduled`)."""
+    program = list(program)
+    exprs = [sp.sympify(e) for _, e in program] + [sp.sympify(o) for o in outputs]
     first: list = []  # the scalar coefficients, computed before the array program
     if scalars:
         hoisted: dict[sp.Expr, sp.Symbol] = {}
@@ -336,12 +342,101 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
             first = list(ksubs) + list(zip(hoisted.values(), kred))
     scalar_names = frozenset([str(a) for a in scalars] + [sym.name for sym, _ in first])
     subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_c"), order="canonical")
+    if program:
+        subs, reduced = _scheduled([sym for sym, _ in program], subs, reduced)
     subs = first + list(subs)
     source, ops = _numpy_function(name, args, subs, reduced, doc, scalar_names)
     c_source = _c_function(name, args, subs, reduced, doc, scalar_names) if c else ""
     return Kernel(name, source, ops, c_source,
                   tuple(str(a) for a in args), len(reduced),
                   (tuple(args), tuple(subs), tuple(reduced)) if c else (), doc, scalar_names)
+
+
+class Program:
+    """A straight-line program under construction: each non-trivial expression given to
+    :meth:`name` becomes an entry ``(symbol, expression)`` that later expressions read by
+    its symbol, so that a value shared by many outputs (a pose map's temporaries and their
+    rates) is written once instead of being multiplied out into each; :func:`kernel` takes
+    the entries as its ``program``."""
+
+    def __init__(self, prefix: str = "_p"):
+        self.entries: list[tuple[sp.Symbol, sp.Expr]] = []
+        self._symbols = sp.numbered_symbols(prefix, real=True)
+
+    def name(self, expr) -> sp.Expr:
+        """``expr`` as a symbol of the program; a number or a symbol as it is."""
+        expr = sp.sympify(expr)
+        if expr.is_Atom:
+            return expr
+        sym = next(self._symbols)
+        self.entries.append((sym, expr))
+        return sym
+
+    def written_out(self, exprs: Sequence[sp.Expr]) -> list[sp.Expr]:
+        """``exprs`` with every entry's symbol replaced by its expression, recursively (an
+        unevaluated ``Abs`` kept unevaluated: xreplace would drop the sign of its
+        argument)."""
+        full: dict[sp.Expr, sp.Expr] = {}
+
+        def put(e: sp.Expr) -> sp.Expr:
+            if e.is_Atom:
+                return full.get(e, e)
+            if e not in full:
+                args = [put(a) for a in e.args]
+                full[e] = (sp.Abs(args[0], evaluate=False) if isinstance(e, sp.Abs)
+                           else e.func(*args) if args != list(e.args) else e)
+            return full[e]
+
+        for sym, e in self.entries:
+            full[sym] = put(sp.sympify(e))
+        return [put(sp.sympify(e)) for e in exprs]
+
+
+def _scheduled(named: Sequence[sp.Symbol], subs, reduced):
+    """The CSE program of ``[*program entries, *outputs]`` (``subs``, ``reduced``; the
+    first ``len(named)`` of ``reduced`` are the entries' expressions, ``named`` their
+    symbols) as one straight-line program: the outputs' expressions, and before them, in
+    depth-first order from the outputs, every temporary and entry they need, each after
+    the values it reads (an entry that is a number or a symbol is put in its readers'
+    places).  The temporaries are then numbered ``_c0, _c1, ...`` in that order."""
+    values = list(reduced[: len(named)])
+    outputs = list(reduced[len(named):])
+    rep: dict[sp.Symbol, sp.Expr] = {}
+    defs: dict[sp.Symbol, sp.Expr] = {}
+    rank: dict[sp.Symbol, int] = {}
+    for k, (sym, e) in enumerate(subs):
+        defs[sym], rank[sym] = e, k
+    for k, (sym, e) in enumerate(zip(named, values)):
+        if e.is_Atom:
+            rep[sym] = e
+        else:
+            defs[sym], rank[sym] = e, len(subs) + k
+    if rep:  # an atom entry read by a later atom entry: resolved in order
+        for sym in named:
+            if sym in rep:
+                rep[sym] = rep[sym].xreplace(rep)
+        defs = {s: sp.sympify(e).xreplace(rep) for s, e in defs.items()}
+        outputs = [sp.sympify(e).xreplace(rep) for e in outputs]
+    order: list[sp.Symbol] = []
+    seen: set[sp.Symbol] = set()
+    for out in outputs:
+        stack = [(s, False) for s in sorted(sp.sympify(out).free_symbols & defs.keys(),
+                                            key=rank.__getitem__, reverse=True)]
+        while stack:
+            sym, done = stack.pop()
+            if done:
+                order.append(sym)
+                continue
+            if sym in seen:
+                continue
+            seen.add(sym)
+            stack.append((sym, True))
+            stack += [(s, False) for s in sorted(
+                sp.sympify(defs[sym]).free_symbols & defs.keys() - seen,
+                key=rank.__getitem__, reverse=True)]
+    renamed = {s: sp.Symbol(f"_c{k}") for k, s in enumerate(order)}
+    return ([(renamed[s], sp.sympify(defs[s]).xreplace(renamed)) for s in order],
+            [sp.sympify(e).xreplace(renamed) for e in outputs])
 
 
 def _numpy_function(name, args, subs, reduced, doc, scalars: frozenset) -> tuple[str, int]:

@@ -21,6 +21,7 @@ from ..solvers.closures import RPSEliminant
 from .c_module import c_module
 from .kernels import (
     Kernel,
+    Program,
     kernel,
     leaner_outputs,
     numpy_function,
@@ -102,15 +103,16 @@ def _abs(e: sp.Expr) -> sp.Expr:
     return sp.Integer(0) if e == 0 else sp.Abs(e, evaluate=False)
 
 
-def pose_map_rates(outputs: Sequence[sp.Expr], pose: Sequence[sp.Symbol]
-                   ) -> list[list[sp.Expr]]:
-    """``d outputs_i / d pose_m`` (rows per output), by forward-mode differentiation of the
-    outputs' common-subexpression program: each temporary's rates are the chain rule over
-    the arguments of its own (small) expression, written in the temporaries before it, and
-    every temporary is then put back in.  The same derivatives as ``diff`` of the whole
-    expression, but the shared factors of a rational pose map stay shared (tripod_planar's
-    Study map and its rates: 989 operations after CSE against 1,257, and 1.3 s of CSE
-    against 8.2 s; its Jacobian kernel 1,509 operations against 1,756)."""
+def pose_map_rates(outputs: Sequence[sp.Expr], pose: Sequence[sp.Symbol], program: Program
+                   ) -> tuple[list[sp.Expr], list[list[sp.Expr]]]:
+    """``(values, rates)``: the ``outputs`` and ``d outputs_i / d pose_m`` (rows per output)
+    as names of ``program``, by forward-mode differentiation of the outputs' common-
+    subexpression program: each temporary is an entry, and so is each of its rates, the
+    chain rule over the arguments of its own (small) expression.  The same derivatives as
+    ``diff`` of the whole expression, the shared factors of a rational pose map shared,
+    and nothing multiplied out: tripod_planar's Study map and its rates are about 820
+    operations after CSE against 989 with the temporaries put back in (and 1,257 with
+    ``diff`` of each output)."""
     pose = list(pose)
     subs, reduced = sp.cse([sp.sympify(e) for e in outputs], symbols=sp.numbered_symbols("_w"),
                            order="canonical")
@@ -119,53 +121,76 @@ def pose_map_rates(outputs: Sequence[sp.Expr], pose: Sequence[sp.Symbol]
         x: [sp.Integer(int(x == y)) for y in pose] for x in pose}
     value: dict[sp.Symbol, sp.Expr] = {}
 
-    def rates_of(e: sp.Expr) -> list[sp.Expr]:
-        out = [zero] * len(pose)
-        for a in sorted(e.free_symbols & set(rates), key=str):
-            partial = None
-            for m, r in enumerate(rates[a]):
-                if r != 0:
-                    if partial is None:
-                        partial = sp.diff(e, a).xreplace(value)
-                    out[m] += partial * r
-        return out
+    def named(e: sp.Expr) -> sp.Expr:
+        """``e`` (over the pose and earlier entries) as an entry, with its rates."""
+        sym = program.name(e)
+        if sym.is_Symbol and sym not in rates:
+            out = [zero] * len(pose)
+            for a in sorted(e.free_symbols & rates.keys(), key=sp.default_sort_key):
+                partial = None
+                for m, r in enumerate(rates[a]):
+                    if r != 0:
+                        if partial is None:
+                            partial = sp.diff(e, a)
+                        out[m] += partial * r
+            rates[sym] = [program.name(r) for r in out]
+        return sym
 
     for sym, e in subs:
-        rates[sym] = rates_of(e)
-        value[sym] = e.xreplace(value)
-    return [rates_of(r) for r in reduced]
+        value[sym] = named(e.xreplace(value))
+    values = [named(sp.sympify(r).xreplace(value)) for r in reduced]
+    return values, [rates.get(v, [zero] * len(pose)) for v in values]
 
 
 # A leg line's frame (R, t and their rates) is built from its platform's Study point in the
-# pose coordinates.  Where that point is small (a Stewart platform's: 246 operations,
-# planar_tripod's tripod on MP1: 173) the rows are far shorter than the chain rule through
-# the generator (planar_tripod's Jacobian kernel: 320 operations against 418); where it is a
-# large rational function of the pose (tripod_planar's tripod, below the planar stage the
-# pose describes: 6332) the frame alone outweighs the chain rule, which reuses the Study
-# coordinates' derivatives the other rows need anyway (that kernel: 6456 against 1756).
+# pose coordinates, each entry a reduced fraction.  Where that point is small (a Stewart
+# platform's: 246 operations, planar_tripod's tripod on MP1: 173) the rows are far shorter
+# than the chain rule through the generator (planar_tripod's Jacobian kernel: 308
+# operations against 415); where it is a large rational function of the pose (tripod_planar's
+# tripod, below the planar stage the pose describes: 6332) the chain rule through the named
+# Study coordinates and their rates is shorter (that kernel: 1,297 operations; the frame
+# from those named values instead, leg_lines.platform_frame_of: 1,570).
 LEG_LINE_MAX_OPS = 1000
 
 
 def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
                          joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol],
-                         sub: dict, lines: dict | None = None) -> list:
-    """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21).
+                         sub: dict, lines: dict | None = None
+                         ) -> tuple[list, list[tuple[sp.Symbol, sp.Expr]]]:
+    """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21), and the
+    program (:class:`.kernels.Program` entries) they read.
 
     Generator ``k`` involves only joints solved at steps ``<= k``, so ``dG/dq`` in the solve
     order is lower triangular: ``dq_k/dX = -(dg_k/dX + sum_{j<k} dg_k/dq_j dq_j/dX) / d_k``
     with the pivot ``d_k = dg_k/dq_k``; ``det Ji = prod d_k``.  The generators are written in
     the Study coordinates ``sub`` maps to the pose, and ``dg/dX`` is taken by the chain rule,
-    ``sum_i dg/ds_i ds_i/dX``: differentiating the substituted generator instead multiplies
-    out the pose map into every partial (the Stewart platform's kernel was 4x larger).  A
-    step in ``lines`` (a stroke that is the distance between two points of its leg, whose
-    generator involves its own stroke only) takes its row from the leg's line
-    (:mod:`..kinematics.leg_lines`), with the same ratio of pivot to row scale, where its
-    platform's Study point is a small function of the pose (``LEG_LINE_MAX_OPS``).
+    ``sum_i dg/ds_i ds_i/dX``, with the Study coordinates and their rates named values of
+    the program (:func:`pose_map_rates`): differentiating the substituted generator instead
+    multiplies out the pose map into every partial (the Stewart platform's kernel was 4x
+    larger).  A step in ``lines`` (a stroke that is the distance between two points of its
+    leg, whose generator involves its own stroke only) takes its row from the leg's line
+    (:mod:`..kinematics.leg_lines`), with the same ratio of pivot to row scale; the
+    platform's frame is named values too, from its Study point's values and rates.
     """
     from ..kinematics import leg_lines
 
+    program = Program()
     study = list(sub)
-    ds = pose_map_rates([sub[s] for s in study], pose)
+    values, ds = pose_map_rates([sub[s] for s in study], pose, program)
+    at = dict(zip(study, values))
+
+    def chain(partials: dict[int, sp.Expr], m: int) -> sp.Expr:
+        """``sum_i partials[i] ds_i/dX_m``."""
+        return sp.Add(*[a * ds[i][m] for i, a in partials.items() if ds[i][m] != 0])
+
+    def partials(e: sp.Expr) -> dict[int, sp.Expr]:
+        """``{i: de/ds_i}`` at the named Study coordinates, the non-zero ones."""
+        out = {}
+        for i, s in enumerate(study):
+            if e.has(s):
+                out[i] = sp.diff(e, s).xreplace(at)
+        return out
+
     frames: dict[tuple, leg_lines.PlatformFrame | None] = {}
     rows: dict[sp.Symbol, list[sp.Expr]] = {}
     pivots, scales = [], []
@@ -182,19 +207,43 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
             pivots.append(d)
             scales.append(scale)
             continue
-        d = sp.diff(g, st.joint).xreplace(sub)
-        dgs = [sp.diff(g, s).xreplace(sub) for s in study]
-        dgx = [sp.Add(*[a * ds[i][m] for i, a in enumerate(dgs) if a != 0 and ds[i][m] != 0])
-               for m in range(len(pose))]
+        d = sp.diff(g, st.joint).xreplace(at)
+        dgs = partials(g)
+        dgx = [chain(dgs, m) for m in range(len(pose))]
         row = []
         for m in range(len(pose)):
-            acc = dgx[m] + sum(sp.diff(g, prev.joint).xreplace(sub) * rows[prev.joint][m]
+            acc = dgx[m] + sum(sp.diff(g, prev.joint).xreplace(at) * rows[prev.joint][m]
                                for prev in steps[: steps.index(st)])
             row.append(-acc / d)
         rows[st.joint] = row
         pivots.append(d)
         scales.append(_abs(d) + sum(_abs(e) for e in dgx))
-    return pivots + scales + [e for q in joints for e in rows[q]]
+    return pivots + scales + [e for q in joints for e in rows[q]], program
+
+
+# A pose map of at most this many operations (the Study coordinates in the pose) may also
+# be written out into the Jacobian's rows, and CSE finds the shorter program then (the
+# Stewart platform's, planar_tripod's, the RCM's); a larger one is only named
+# (tripod_planar's, about 20,000 operations: 1,291 operations named against 1,509 written
+# out, and 0.6 s of CSE against 3.3 s).
+WRITTEN_OUT_MAX_OPS = 2000
+
+
+def _jacobian_kernel(spec: IKModuleSpec, gens: Sequence[sp.Expr], lean: dict,
+                     args: Sequence[sp.Symbol], par: Sequence[sp.Symbol]) -> Kernel:
+    """The kernel ``_jac`` of :func:`_triangular_jacobian`'s outputs, with the pose map's
+    values and rates as named values of its program or, where the map is small
+    (``WRITTEN_OUT_MAX_OPS``), written out into the outputs if that gives fewer operations
+    after CSE."""
+    doc = ("Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji "
+           "is triangular in the solve order).")
+    tri, program = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, lean,
+                                        spec.leg_lines)
+    named = kernel("_jac", args, tri, doc, c=True, scalars=par, program=program.entries)
+    if sum(pr.count_ops(e) for e in lean.values()) > WRITTEN_OUT_MAX_OPS:
+        return named
+    written = kernel("_jac", args, program.written_out(tri), doc, c=True, scalars=par)
+    return written if written.operations <= named.operations else named
 
 
 def _with_constants(spec: IKModuleSpec) -> IKModuleSpec:
@@ -377,7 +426,6 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     g_pose = [g.xreplace(sub) for g in gens]
     ji = sp.Matrix(g_pose).jacobian(sp.Matrix(spec.joints))
     jo_study = pr.jacobian(gens, study).xreplace(sub)
-    tri = _triangular_jacobian(spec.steps, gens, spec.joints, spec.pose, lean, spec.leg_lines)
     # pivots of linear steps that can vanish (a constant pivot never does)
     linear = [k for k, st in enumerate(spec.steps)
               if st.degree == 1 and not sp.diff(gens[k], st.joint).is_number]
@@ -388,10 +436,7 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
         kernels.append(kernel("_pivots", [*study, *spec.joints, *par], piv + piv_scale,
                               "Pivots dG_k/dq_k of the linear IK steps and their row scales "
                               "(in Study coordinates).", c=True, scalars=par))
-    kernels.append(kernel("_jac", args, tri,
-                          "Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward "
-                          "substitution: Ji is triangular in the solve order).", c=True,
-                          scalars=par))
+    kernels.append(_jacobian_kernel(spec, gens, lean, args, par))
     kernels.append(kernel("_ji", args, list(ji), "Input Jacobian dG/dq, row-major.",
                           scalars=par))
     kernels.append(kernel("_jo_study", args, list(jo_study),
