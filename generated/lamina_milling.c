@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 80abe2a4389db7684a29f304339943f7799f59f4bbf5cb3a482e78c09c4518d0
+ * Derivation hash: d6cf96c7bc33d981e6cdec1d1c259d877e9a226ef04d603e48e490d7fc34f7eb
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "80abe2a4389db7684a29f304339943f7799f59f4bbf5cb3a482e78c09c4518d0";
+const char bonered_derivation_hash[] = "d6cf96c7bc33d981e6cdec1d1c259d877e9a226ef04d603e48e490d7fc34f7eb";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 284462664e9bc34a38eebe7fb8d9891d1952ac8f6483c349d257f7e4cf3391ea
+ * Derivation hash: c2acfd7c1e56c0b578a10183b3874959d3a705ab5e1d7f5b8afd83afd7d46a64
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "284462664e9bc34a38eebe7fb8d9891d1952ac8f6483c349d257f7e4cf3391ea";
+const char bonered_derivation_hash[] = "c2acfd7c1e56c0b578a10183b3874959d3a705ab5e1d7f5b8afd83afd7d46a64";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6d0aaad2dea300ad897f5f77bb12505abdee04d3b1bf114c090daab889109f93
+ * Derivation hash: d176881f4ff60f1afe1a9c9ecceac7466e27a64eea7097175bb2789aeb1c610d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6d0aaad2dea300ad897f5f77bb12505abdee04d3b1bf114c090daab889109f93";
+const char bonered_derivation_hash[] = "d176881f4ff60f1afe1a9c9ecceac7466e27a64eea7097175bb2789aeb1c610d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b76766c6ff2e93924b0ff718b9d143cee8f08f50bb6ac1645c2ee220d316db6a
+ * Derivation hash: d37e47655ec6467b89063d6caa64fdd9c5d9c6036aaad6d49bd7203b7e4bed4b
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b76766c6ff2e93924b0ff718b9d143cee8f08f50bb6ac1645c2ee220d316db6a";
+const char bonered_derivation_hash[] = "d37e47655ec6467b89063d6caa64fdd9c5d9c6036aaad6d49bd7203b7e4bed4b";
 int bonered_abi(void) { return 3; }
 #endif
 

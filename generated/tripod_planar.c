@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3c6f740694a936c2fa31c2a9675c3aada55f0c00cfd49751859656095461dc0b
+ * Derivation hash: 6dd99b173ed5b3712a837cac4787bcda512dbe737f34c711907e995f7515bb13
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3c6f740694a936c2fa31c2a9675c3aada55f0c00cfd49751859656095461dc0b";
+const char bonered_derivation_hash[] = "6dd99b173ed5b3712a837cac4787bcda512dbe737f34c711907e995f7515bb13";
 int bonered_abi(void) { return 3; }
 #endif
 

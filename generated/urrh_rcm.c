@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 62ff6314bf72ffd46707786c394793b0cc8a72e8d7ffeeaddfb462a1cb6c774b
+ * Derivation hash: cbc4a10e7b13ff98fb37f8eee86e5b74846e9a94a75ffeaebbc787e6f69f7c79
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "62ff6314bf72ffd46707786c394793b0cc8a72e8d7ffeeaddfb462a1cb6c774b";
+const char bonered_derivation_hash[] = "cbc4a10e7b13ff98fb37f8eee86e5b74846e9a94a75ffeaebbc787e6f69f7c79";
 int bonered_abi(void) { return 3; }
 #endif
 

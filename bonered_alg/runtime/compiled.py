@@ -191,12 +191,15 @@ def _rows(a: numpy.ndarray) -> tuple[int, int]:
 
 
 def _address(a: numpy.ndarray) -> int:
-    """The address of an array's first element: ``a.ctypes.data`` (about 1 microsecond a
+    """The address of an array's first element: ``a.ctypes.data`` (about 0.8 microsecond a
     call, four calls in each compiled call), through the buffer protocol where the array is
-    C-contiguous, writable and not empty (about 0.3)."""
+    C-contiguous, writable and not empty (about 0.3; a strided array goes to ctypes.data
+    directly: the buffer protocol's refusal costs 0.5 more)."""
+    if not a.flags.c_contiguous:
+        return a.ctypes.data
     try:
         return ctypes.addressof(ctypes.c_char.from_buffer(a))
-    except (TypeError, ValueError, BufferError):  # read-only, empty or strided
+    except (TypeError, ValueError, BufferError):  # read-only or empty
         return a.ctypes.data
 
 
