@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: cbc4a10e7b13ff98fb37f8eee86e5b74846e9a94a75ffeaebbc787e6f69f7c79
+ * Derivation hash: 2f9b56591040b6d40cef7fd2814a4034e953e3cf22f5d0f5f6a831ec87f2ed81
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "cbc4a10e7b13ff98fb37f8eee86e5b74846e9a94a75ffeaebbc787e6f69f7c79";
+const char bonered_derivation_hash[] = "2f9b56591040b6d40cef7fd2814a4034e953e3cf22f5d0f5f6a831ec87f2ed81";
 int bonered_abi(void) { return 3; }
 #endif
 
