@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d6cf96c7bc33d981e6cdec1d1c259d877e9a226ef04d603e48e490d7fc34f7eb
+ * Derivation hash: 22649055aa47c4fc6ec8619e134f7b21e4c385aec19b37a64cb4eaf2865381d9
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d6cf96c7bc33d981e6cdec1d1c259d877e9a226ef04d603e48e490d7fc34f7eb";
+const char bonered_derivation_hash[] = "22649055aa47c4fc6ec8619e134f7b21e4c385aec19b37a64cb4eaf2865381d9";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c2acfd7c1e56c0b578a10183b3874959d3a705ab5e1d7f5b8afd83afd7d46a64
+ * Derivation hash: e250595f6bf331798d5d9e9d8433a2cce519123d8662e3a2815d26f4433f4b20
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c2acfd7c1e56c0b578a10183b3874959d3a705ab5e1d7f5b8afd83afd7d46a64";
+const char bonered_derivation_hash[] = "e250595f6bf331798d5d9e9d8433a2cce519123d8662e3a2815d26f4433f4b20";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d176881f4ff60f1afe1a9c9ecceac7466e27a64eea7097175bb2789aeb1c610d
+ * Derivation hash: 1bb7f44ea2c838284827386f7296d5f43d30fbb0fc4abc3b8c5a23a16f9c0ce7
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d176881f4ff60f1afe1a9c9ecceac7466e27a64eea7097175bb2789aeb1c610d";
+const char bonered_derivation_hash[] = "1bb7f44ea2c838284827386f7296d5f43d30fbb0fc4abc3b8c5a23a16f9c0ce7";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d37e47655ec6467b89063d6caa64fdd9c5d9c6036aaad6d49bd7203b7e4bed4b
+ * Derivation hash: 406d0ea0e5e3e34e6e1c9e8c7773d162bfa3528ff8f7e961e29a17121056dc6e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d37e47655ec6467b89063d6caa64fdd9c5d9c6036aaad6d49bd7203b7e4bed4b";
+const char bonered_derivation_hash[] = "406d0ea0e5e3e34e6e1c9e8c7773d162bfa3528ff8f7e961e29a17121056dc6e";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 6dd99b173ed5b3712a837cac4787bcda512dbe737f34c711907e995f7515bb13
+ * Derivation hash: f55c2f83e3f5c052cf19bf0c270f079f18d493558d6fd39b7960a8e84f474580
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "6dd99b173ed5b3712a837cac4787bcda512dbe737f34c711907e995f7515bb13";
+const char bonered_derivation_hash[] = "f55c2f83e3f5c052cf19bf0c270f079f18d493558d6fd39b7960a8e84f474580";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2f9b56591040b6d40cef7fd2814a4034e953e3cf22f5d0f5f6a831ec87f2ed81
+ * Derivation hash: c84c9c3467d5646d39641deddec2b9aa32da45eb23fdfd898fc95a5514c8f30a
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2f9b56591040b6d40cef7fd2814a4034e953e3cf22f5d0f5f6a831ec87f2ed81";
+const char bonered_derivation_hash[] = "c84c9c3467d5646d39641deddec2b9aa32da45eb23fdfd898fc95a5514c8f30a";
 int bonered_abi(void) { return 3; }
 #endif
 

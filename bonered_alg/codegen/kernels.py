@@ -392,7 +392,9 @@ class Program:
         return [put(sp.sympify(e)) for e in exprs]
 
 
-def _scheduled(named: Sequence[sp.Symbol], subs, reduced):
+def _scheduled(named: Sequence[sp.Symbol], subs: Sequence[tuple[sp.Symbol, sp.Expr]],
+               reduced: Sequence[sp.Expr]
+               ) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr]]:
     """The CSE program of ``[*program entries, *outputs]`` (``subs``, ``reduced``; the
     first ``len(named)`` of ``reduced`` are the entries' expressions, ``named`` their
     symbols) as one straight-line program: the outputs' expressions, and before them, in

@@ -148,17 +148,16 @@ def pose_map_rates(outputs: Sequence[sp.Expr], pose: Sequence[sp.Symbol], progra
 # than the chain rule through the generator (planar_tripod's Jacobian kernel: 308
 # operations against 415); where it is a large rational function of the pose (tripod_planar's
 # tripod, below the planar stage the pose describes: 6332) the chain rule through the named
-# Study coordinates and their rates is shorter (that kernel: 1,297 operations; the frame
-# from those named values instead, leg_lines.platform_frame_of: 1,570).
+# Study coordinates and their rates is shorter (that kernel: 1,291 operations; a frame built
+# from those named values and their rates instead, tried: 1,570).
 LEG_LINE_MAX_OPS = 1000
 
 
 def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
                          joints: Sequence[sp.Symbol], pose: Sequence[sp.Symbol],
-                         sub: dict, lines: dict | None = None
-                         ) -> tuple[list, list[tuple[sp.Symbol, sp.Expr]]]:
+                         sub: dict, lines: dict | None = None) -> tuple[list, Program]:
     """Pivots, row scales and ``dq/dX`` by forward substitution (004 eq. 19-21), and the
-    program (:class:`.kernels.Program` entries) they read.
+    program of named values (:class:`.kernels.Program`) they read.
 
     Generator ``k`` involves only joints solved at steps ``<= k``, so ``dG/dq`` in the solve
     order is lower triangular: ``dq_k/dX = -(dg_k/dX + sum_{j<k} dg_k/dq_j dq_j/dX) / d_k``
@@ -169,8 +168,8 @@ def _triangular_jacobian(steps: Sequence[IKStep], gens: Sequence[sp.Expr],
     multiplies out the pose map into every partial (the Stewart platform's kernel was 4x
     larger).  A step in ``lines`` (a stroke that is the distance between two points of its
     leg, whose generator involves its own stroke only) takes its row from the leg's line
-    (:mod:`..kinematics.leg_lines`), with the same ratio of pivot to row scale; the
-    platform's frame is named values too, from its Study point's values and rates.
+    (:mod:`..kinematics.leg_lines`), with the same ratio of pivot to row scale, where its
+    platform's Study point is a small function of the pose (``LEG_LINE_MAX_OPS``).
     """
     from ..kinematics import leg_lines
 

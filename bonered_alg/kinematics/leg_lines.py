@@ -22,7 +22,7 @@ the solution: ``dg/dq = 2 q |x|^2`` and ``dg/dX_m = -2 |x|^2 l . dl/dX_m``, so t
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import sympy as sp
@@ -76,34 +76,6 @@ def platform_frame(point: Sequence[sp.Expr], pose: Sequence[sp.Symbol]) -> Platf
         dx = tuple(sp.diff(c, p) for c in x)
         omega.append(tuple(_rational(2 * c / n) for c in cv.quaternion_product(dx, conj)[1:]))
         rate.append(tuple(_rational(sp.diff(c, p)) for c in t))
-    return PlatformFrame(rot, t, tuple(omega), tuple(rate))
-
-
-def platform_frame_of(point: Sequence[sp.Expr], rates: Sequence[Sequence[sp.Expr]],
-                      name: Callable[[sp.Expr], sp.Expr]) -> PlatformFrame:
-    """:func:`platform_frame` in forward mode: the frame of the Study point whose values
-    are ``point`` and whose rates per pose coordinate are ``rates`` (``rates[j][m] = d
-    point_j / dX_m``), each entry written through ``name`` (a
-    :class:`..codegen.kernels.Program`'s: the frame is then a few dozen named values
-    however large the point is as a function of the pose).  ``t = T / n`` with ``T`` the
-    translation times the norm ``n``, so ``t'_m = (T'_m - t n'_m) / n``."""
-    point = tuple(point)
-    held = sp.symbols(f"_P0:{len(point)}", real=True)  # the coordinates while differentiated
-    inv = name(1 / name(cv.rotation_norm(point)))
-    rot = tuple(tuple(name(c * inv) for c in row)
-                for row in cv.rotation_matrix_times_norm(point))
-    big_t = cv.translation_times_norm(point)
-    t = tuple(name(c * inv) for c in big_t)
-    x = point[:4]
-    conj = (x[0], -x[1], -x[2], -x[3])
-    omega, rate = [], []
-    for m in range(len(rates[0]) if rates else 0):
-        d = [rates[j][m] for j in range(len(point))]
-        omega.append(tuple(name(2 * c * inv) for c in cv.quaternion_product(d[:4], conj)[1:]))
-        dn = 2 * sp.Add(*[a * b for a, b in zip(x, d[:4])])
-        d_big = [sp.Add(*[sp.diff(c, p) * dp for p, dp in zip(held, d) if dp != 0])
-                 .xreplace(dict(zip(held, point))) for c in cv.translation_times_norm(held)]
-        rate.append(tuple(name((db - ti * dn) * inv) for db, ti in zip(d_big, t)))
     return PlatformFrame(rot, t, tuple(omega), tuple(rate))
 
 
