@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 22649055aa47c4fc6ec8619e134f7b21e4c385aec19b37a64cb4eaf2865381d9
+ * Derivation hash: 5b9c37ef60fdf4e93e89dd02e8386e8c5a460f231c514f867e5a5ead9042e071
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "22649055aa47c4fc6ec8619e134f7b21e4c385aec19b37a64cb4eaf2865381d9";
+const char bonered_derivation_hash[] = "5b9c37ef60fdf4e93e89dd02e8386e8c5a460f231c514f867e5a5ead9042e071";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e250595f6bf331798d5d9e9d8433a2cce519123d8662e3a2815d26f4433f4b20
+ * Derivation hash: 20b111781630a5ec59f2256515d303a7a52113ac1aa6da448611fd533f225727
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e250595f6bf331798d5d9e9d8433a2cce519123d8662e3a2815d26f4433f4b20";
+const char bonered_derivation_hash[] = "20b111781630a5ec59f2256515d303a7a52113ac1aa6da448611fd533f225727";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 1bb7f44ea2c838284827386f7296d5f43d30fbb0fc4abc3b8c5a23a16f9c0ce7
+ * Derivation hash: 59661b59da88bef9e0fc704ac97939b02a32cb7c7fe7816781ff1da738b9f25e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "1bb7f44ea2c838284827386f7296d5f43d30fbb0fc4abc3b8c5a23a16f9c0ce7";
+const char bonered_derivation_hash[] = "59661b59da88bef9e0fc704ac97939b02a32cb7c7fe7816781ff1da738b9f25e";
 int bonered_abi(void) { return 3; }
 #endif
 

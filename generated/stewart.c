@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 406d0ea0e5e3e34e6e1c9e8c7773d162bfa3528ff8f7e961e29a17121056dc6e
+ * Derivation hash: b6848582f07a3aef18d844c1cf124434fcce722606e87f03022431a4ead03f60
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "406d0ea0e5e3e34e6e1c9e8c7773d162bfa3528ff8f7e961e29a17121056dc6e";
+const char bonered_derivation_hash[] = "b6848582f07a3aef18d844c1cf124434fcce722606e87f03022431a4ead03f60";
 int bonered_abi(void) { return 3; }
 #endif
 

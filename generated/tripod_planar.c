@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: f55c2f83e3f5c052cf19bf0c270f079f18d493558d6fd39b7960a8e84f474580
+ * Derivation hash: fe6e5ad9551c5ee25766da45210beab98f18472037408ec28e1e356b27792d58
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "f55c2f83e3f5c052cf19bf0c270f079f18d493558d6fd39b7960a8e84f474580";
+const char bonered_derivation_hash[] = "fe6e5ad9551c5ee25766da45210beab98f18472037408ec28e1e356b27792d58";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c84c9c3467d5646d39641deddec2b9aa32da45eb23fdfd898fc95a5514c8f30a
+ * Derivation hash: 3a4c94e88985eeec33d855ac422b08386383f6260408c32a06e4049a721d8b97
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c84c9c3467d5646d39641deddec2b9aa32da45eb23fdfd898fc95a5514c8f30a";
+const char bonered_derivation_hash[] = "3a4c94e88985eeec33d855ac422b08386383f6260408c32a06e4049a721d8b97";
 int bonered_abi(void) { return 3; }
 #endif
 

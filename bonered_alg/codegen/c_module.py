@@ -58,8 +58,9 @@ def c_module(*, name: str, derivation_hash: str, generator: str, pose: Sequence[
 
     ``row_kernels``: kernels of the numpy module that the runtime may call through the
     library row by row (``bonered_rows_<name>``, :func:`_row_entry`): forward kinematics'
-    back-substitution steps and Newton system, polynomials whose C program is the numpy
-    program operation for operation (the same numbers, bit for bit)."""
+    back-substitution steps, Newton system and 3-RPS kernels, rational functions whose C
+    program is the numpy program operation for operation (the same numbers, bit for
+    bit)."""
     npose, nstudy, nj, npar = len(pose), len(study_pose), len(joints), len(parameters)
     par = [f"par[{i}]" for i in range(npar)]
     pose_kernels = [k for k in (study, jac, limits_kernel) if k is not None]

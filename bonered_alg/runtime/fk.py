@@ -11,8 +11,8 @@ import numpy
 
 from . import rps as rps_solver
 from .backsubstitution import backsubstitute
-from .inputs import against_modes, broadcast, columns, stacked
-from .newton import newton_step
+from .inputs import against_modes, columns, stacked
+from .newton import kernel_system, newton_step
 from .status import (
     COND_RTOL,
     FORWARD_SINGULAR,
@@ -29,24 +29,8 @@ from .status import (
 def closure_system(spec, q, study, par):
     """Residuals f (..., m) of the leg generators and their Jacobian (..., m, n) in the
     unknowns, at the back-substituted Study coordinates ``study``."""
-    n = len(spec.unknowns)
-    shape = study.shape[:-1]
-    matrix = getattr(spec.newton, "matrix", None)  # the compiled twin: one array
-    if matrix is not None:
-        out, at, n_rows = matrix(*columns(study), *columns(q), *par)
-        out = numpy.broadcast_to(out[:, :n_rows].reshape((len(out),) + at),
-                                 (len(out),) + shape)
-        m = len(out) // (n + 1)
-        # C order, as numpy.stack gives below: numpy's small matrix products sum in an
-        # order that depends on the layout (the same numbers only from the same layout)
-        return (numpy.ascontiguousarray(numpy.moveaxis(out[:m], 0, -1)),
-                numpy.ascontiguousarray(numpy.moveaxis(out[m:], 0, -1)).reshape(
-                    shape + (m, n)))
-    values = spec.newton(*columns(study), *columns(q), *par)
-    vals = [broadcast(v, shape) for v in values]
-    m = len(vals) // (n + 1)
-    return (numpy.stack(vals[:m], axis=-1),
-            numpy.stack(vals[m:], axis=-1).reshape(shape + (m, n)))
+    return kernel_system(spec.newton, [*columns(study), *columns(q), *par],
+                         study.shape[:-1], len(spec.unknowns))
 
 
 STEP_RTOL = 1e-14  # a Gauss-Newton step this small relative to 1 + |x| ends the polish

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy
 
 from .inputs import against_modes, broadcast
-from .newton import newton_step
+from .newton import kernel_system, newton_step
 from .status import FORWARD_SINGULAR, NO_REAL_SOLUTION, OK, OUTSIDE_CHART
 
 # u1 = (w + T) / (1 - T w) with T = tan(phi/2), phi = pi/2 + 0.1234: the eliminant is formed
@@ -116,30 +116,12 @@ def quadratic_roots(c):
     return numpy.stack([r0, r1, (wm + T) / (1.0 - T * wm)], axis=-1)
 
 
-def _equations(k, u, qk, par):
-    """The equations e_ij (..., 3) and their derivatives de/du (..., 3, 3) at ``u``
-    (..., 3): from the compiled twin's one array where ``k.equations`` has one (the same
-    numbers, C-contiguous as numpy.stack gives them), else stacked from the numpy kernel's
-    outputs."""
-    shape = u.shape[:-1]
-    matrix = getattr(k.equations, "matrix", None)
-    if matrix is not None:
-        out, at, n = matrix(u[..., 0], u[..., 1], u[..., 2], *qk, *par)
-        out = numpy.broadcast_to(out[:, :n].reshape((len(out),) + at), (len(out),) + shape)
-        return (numpy.ascontiguousarray(numpy.moveaxis(out[:3], 0, -1)),
-                numpy.ascontiguousarray(numpy.moveaxis(out[3:], 0, -1)).reshape(
-                    shape + (3, 3)))
-    vals = [broadcast(v, shape) for v in k.equations(u[..., 0], u[..., 1], u[..., 2], *qk,
-                                                      *par)]
-    return (numpy.stack(vals[:3], axis=-1),
-            numpy.stack(vals[3:], axis=-1).reshape(shape + (3, 3)))
-
-
 def scaled(k, theta, qk, par, pair):
     """e_ij / ((1 + u_i^2)(1 + u_j^2)) at u = tan(theta/2) and its Jacobian in theta:
     d/dtheta_k = (de/du_k (1 + u_k^2) / 2 - e u_k) / ((1 + u_i^2)(1 + u_j^2)) for k in {i, j}."""
     u = numpy.tan(theta / 2.0)
-    e, de = _equations(k, u, qk, par)
+    e, de = kernel_system(k.equations, [u[..., 0], u[..., 1], u[..., 2], *qk, *par],
+                          u.shape[:-1], 3)
     w = 1.0 + u * u
     den = w[..., pair[:, 0]] * w[..., pair[:, 1]]
     jac = (de * (w / 2.0)[..., None, :] - e[..., :, None] * u[..., None, :]
