@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 5b9c37ef60fdf4e93e89dd02e8386e8c5a460f231c514f867e5a5ead9042e071
+ * Derivation hash: 70b02185efe8d1762804f02c9f4c4d8e3ae22bc81fa48ed37c132e9d31a6d7a5
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "5b9c37ef60fdf4e93e89dd02e8386e8c5a460f231c514f867e5a5ead9042e071";
+const char bonered_derivation_hash[] = "70b02185efe8d1762804f02c9f4c4d8e3ae22bc81fa48ed37c132e9d31a6d7a5";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -29,31 +29,30 @@ BF_INLINE void _step0_L(double v_x, double v_y, double v_z, double v_lOA, double
     const double v__s1 = -v__k0 - v__k1 - 2.0*v_lDE;
     const double v__c0 = 2.0*v_z;
     out[0] = 1.0;
-    out[1] = -v__c0 + 2.0*v_dD;
-    out[2] = -v_dD*v__c0 + v__s0 + v__s1*v_y + (v_x*v_x) + (v_y*v_y) + (v_z*v_z);
+    out[1] = 2.0*v_dD - v__c0;
+    out[2] = v__s0 - v_dD*v__c0 + v__s1*v_y + (v_x*v_x) + (v_y*v_y) + (v_z*v_z);
 }
 
 /* Coefficients (A, B, C) of the generator solved for t1 (from platform/1). */
 BF_INLINE void _step1_t1(double v_x, double v_y, double v_z, double v_L, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
     const double v__s0 = (v_lAF*v_lAF) - (v_lOA*v_lOA);
-    const double v__c0 = (v_x*v_x);
-    const double v__c1 = (v_y*v_y);
-    const double v__c2 = 2.0*v_lOA*v_x;
-    out[0] = -v__c0 - v__c1 - v__c2 + v__s0;
+    const double v__c0 = v__s0 - (v_x*v_x) - (v_y*v_y);
+    const double v__c1 = 2.0*v_lOA*v_x;
+    out[0] = v__c0 - v__c1;
     out[1] = 4.0*v_lOA*v_y;
-    out[2] = -v__c0 - v__c1 + v__c2 + v__s0;
+    out[2] = v__c0 + v__c1;
 }
 
 /* Coefficients (A, B, C) of the generator solved for t2 (from platform/2). */
 BF_INLINE void _step2_t2(double v_x, double v_y, double v_z, double v_L, double v_t1, double v_lOA, double v_lAF, double v_lOB, double v_lBM, double v_lDE, double v_lEC, double v_dy1, double v_dy2, double v_dD, double v_G1, double v_G2, double v_G3, double v_G4, double v_G5, double v_G6, double v_G7, double v_l2, double v_l4, double v_l5, double v_l8, double v_l9, double *restrict out)
 {
-    const double v__s0 = -(v_lBM*v_lBM) + (v_lOB*v_lOB);
+    const double v__s0 = (v_lOB*v_lOB) - (v_lBM*v_lBM);
     const double v__c0 = 2.0*v_lOB*v_x;
     const double v__c1 = v__s0 + (v_x*v_x) + (v_y*v_y);
     out[0] = v__c0 + v__c1;
     out[1] = -4.0*v_lOB*v_y;
-    out[2] = -v__c0 + v__c1;
+    out[2] = v__c1 - v__c0;
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
@@ -69,7 +68,7 @@ BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1,
     const double v__s2 = v__k0 + v__k1;
     const double v__s3 = -v__k2;
     const double v__s4 = 2.0*v__k3;
-    const double v__s5 = -v__k2 + 2.0*v__k3;
+    const double v__s5 = 2.0*v__k3 - v__k2;
     const double v__s6 = -v__k4;
     const double v__s7 = v__k4;
     const double v__c0 = 2.0*v_L + 2.0*v_dD - 2.0*v_z;
@@ -99,7 +98,7 @@ BF_INLINE void _jac(double v_x, double v_y, double v_z, double v_L, double v_t1,
     out[4] = fabs(v__c11) + fabs(v__c12) + fabs(v__c4);
     out[5] = fabs(v__c14) + fabs(v__c16) + fabs(v__c7);
     out[6] = -v__c17*v__c8;
-    out[7] = v__c17*(-v__c9 + v__s7);
+    out[7] = v__c17*(v__s7 - v__c9);
     out[8] = 1.0;
     out[9] = v__c12*v__c18;
     out[10] = v__c11*v__c18;
@@ -188,7 +187,7 @@ BF_INLINE void _fkstep0_y(double v_L, double v_t1, double v_t2, double v_lOA, do
     const double v__k30 = v__k22*v__k26;
     const double v__k31 = 48.0*v__k10;
     const double v__k32 = v__k20 + v__k21 - 8.0*v__k22*v_lOA + v__k7;
-    const double v__k33 = -8.0*v__k18*v_lOB + v__k24 + v__k25 + v__k9;
+    const double v__k33 = v__k24 - 8.0*v__k18*v_lOB + v__k25 + v__k9;
     const double v__k34 = (v_lAF*v_lAF*v_lAF*v_lAF);
     const double v__k35 = (v_lBM*v_lBM*v_lBM*v_lBM);
     const double v__k36 = (v_lOA*v_lOA*v_lOA*v_lOA);
@@ -1019,7 +1018,7 @@ BF_INLINE void _fk_newton(double v_y, double v_x, double v_z, double v_L, double
     out[6] = v__c12*v__c5 + v__c12 - v__c8;
     out[7] = v__c13*v__c5 - v__c13 + v__c5*v__c6 + v__c6;
     out[8] = 0.0;
-    out[9] = -v__c11 + v__c12*v__c9 + v__c12;
+    out[9] = v__c12*v__c9 - v__c11 + v__c12;
     out[10] = v__c14*v__c9 - v__c14 + v__c6*v__c9 + v__c6;
     out[11] = 0.0;
 }

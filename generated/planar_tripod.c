@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 20b111781630a5ec59f2256515d303a7a52113ac1aa6da448611fd533f225727
+ * Derivation hash: b16f45ee539a559b0ecfc7d18a4162f79b7d122fe9f1a4cb25c4c815c8fd17bc
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "20b111781630a5ec59f2256515d303a7a52113ac1aa6da448611fd533f225727";
+const char bonered_derivation_hash[] = "b16f45ee539a559b0ecfc7d18a4162f79b7d122fe9f1a4cb25c4c815c8fd17bc";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -36,7 +36,7 @@ BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, doub
     const double v__c10 = v__c5*v__c7;
     out[0] = v__c0;
     out[1] = -v__c0*v__c1 - v__c8 - 0.5*v_x;
-    out[2] = -v__c0*v__c8 + (0.5)*v__c0*v_x - v__c1;
+    out[2] = (0.5)*v__c0*v_x - v__c0*v__c8 - v__c1;
     out[3] = v__c2;
     out[4] = v__c3;
     out[5] = -v__c4;
@@ -104,7 +104,7 @@ BF_INLINE void _step3_q4(double v_g, double v_v1, double v_v2, double v_x_1, dou
     const double v__s2 = v__k3;
     const double v__s3 = -v__k3 - v__k4;
     const double v__s4 = -v__k2 - v__k4;
-    const double v__s5 = -v__k5 + v__k6;
+    const double v__s5 = v__k6 - v__k5;
     const double v__s6 = -v__k5 - v__k6;
     const double v__c0 = (v_x_2*v_x_2);
     out[0] = v__c0 + 1.0;
@@ -126,7 +126,7 @@ BF_INLINE void _step4_q5(double v_g, double v_v1, double v_v2, double v_x_1, dou
     const double v__s2 = v__k3;
     const double v__s3 = -v__k3 - v__k4;
     const double v__s4 = -v__k2 - v__k4;
-    const double v__s5 = -v__k5 + 4.0*v_rb;
+    const double v__s5 = 4.0*v_rb - v__k5;
     const double v__s6 = v__k5 + 4.0*v_rb;
     const double v__c0 = (v_x_1*v_x_1);
     out[0] = v__c0 + 1.0;
@@ -213,20 +213,20 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c19 = v__c13*v__c18;
     const double v__c20 = v__c12*v__c19;
     const double v__c21 = v__c20*v__c9;
-    const double v__c22 = v__c6*(-v__c21 + v__c8);
+    const double v__c22 = v__c6*(v__c8 - v__c21);
     const double v__c23 = 6.0*v_ra;
     const double v__c24 = 6.0*v__c0;
     const double v__c25 = (0.5)*v__c0;
     const double v__c26 = -v__c21 - v__c25*v_y - v__c8;
     const double v__c27 = v__c6*(v__c23 + v__c24*v_q1 + v__s3*v__c26 + v__s0*v_q1);
     const double v__c28 = (0.5)*v__c10 + 0.5;
-    const double v__c29 = -4.0*v_rb*v__c10*v__c13*v__c16*v__c28/(v__c11*v__c11) + v__c20*v__c28;
+    const double v__c29 = v__c20*v__c28 - 4.0*v_rb*v__c10*v__c13*v__c16*v__c28/(v__c11*v__c11);
     const double v__c30 = -v__c29;
     const double v__c31 = v__s3*v__c0;
     const double v__c32 = (0.5)*v__c14 + 0.5;
     const double v__c33 = v__c12*v__c9;
     const double v__c34 = (1.0/(v__c15*v__c15));
-    const double v__c35 = -4.0*v_rb*v__c12*v__c14*v__c32*v__c34*v__c9 + v__c18*v__c32*v__c33;
+    const double v__c35 = v__c18*v__c32*v__c33 - 4.0*v_rb*v__c12*v__c14*v__c32*v__c34*v__c9;
     const double v__c36 = -v__c35;
     const double v__c37 = 3.0*v__c0;
     const double v__c38 = v__c1 + 6.0;
@@ -245,7 +245,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c51 = v__c22*v__c41 - v__c38*v__c46 + v__c6*(v__c24*v_q2 - v__c47 + v__c48 - v__c49 + v__c50 + v__s0*v_q2);
     const double v__c52 = v__c1 - 6.0;
     const double v__c53 = v__c25*v__c52;
-    const double v__c54 = -v__c24 + v__s2;
+    const double v__c54 = v__s2 - v__c24;
     const double v__c55 = v__c25*v__c54 + 3.0;
     const double v__c56 = v__c0*v__c54;
     const double v__c57 = v__c29*v__c56 - v__c30*v__c52;
@@ -270,10 +270,10 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c76 = -v__c75 - v_ra;
     const double v__c77 = -8.0*v__c14*v__c34*v__c74*v__c76*v__c9 - v__c16*v__c63*(v__c71*v__c76 - v__c73*v__c75);
     const double v__c78 = v__c19 + v_z;
-    const double v__c79 = -v__c62 + v__c65;
+    const double v__c79 = v__c65 - v__c62;
     const double v__c80 = v__c19*v__c79;
     const double v__c81 = v__c69*v__c80;
-    const double v__c82 = -v__c64*v__c78 + v__c71*v__c79 + v__c80;
+    const double v__c82 = v__c71*v__c79 - v__c64*v__c78 + v__c80;
     const double v__c83 = (1.0/(v__c3));
     const double v__c84 = (1.0/(v_q4));
     const double v__c85 = (1.0/(v_q5));
@@ -304,7 +304,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     out[22] = v__c45*v__c83;
     out[23] = -v__c51*v__c83;
     out[24] = v__c83*(v__s5*v__c0 - v__c55);
-    out[25] = v__c83*(-v__c37 + v__c53 + v__s4);
+    out[25] = v__c83*(v__c53 - v__c37 + v__s4);
     out[26] = 0.0;
     out[27] = v__c57*v__c83;
     out[28] = v__c58*v__c83;
@@ -334,7 +334,7 @@ BF_INLINE void _limit_values(double v__f0, double v__f1, double v_x, double v_y,
 {
     const double v__c0 = sin(v_beta);
     const double v__c1 = v_rb*v__c0;
-    const double v__c2 = -v__c1 + v_z;
+    const double v__c2 = v_z - v__c1;
     const double v__c3 = cos(v_beta);
     const double v__c4 = v_rb*v__c3;
     const double v__c5 = v__f0;
@@ -441,7 +441,7 @@ BF_INLINE void _fkstep0_g(double v_q1, double v_q2, double v_q3, double v_q4, do
     const double v__c0 = 3.0*v_q1 + 3.0*v_q2 + 3.0*v_q3;
     out[0] = v__c0;
     out[1] = v__s0*v_q1 + v__s0*v_q2 + v__s0*v_q3 + 18.0*v_ra;
-    out[2] = -v__c0 + v__s1;
+    out[2] = v__s1 - v__c0;
 }
 /* _fkstep0_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fkstep0_g_shape[4] = {8, 3, 0, 13};  /* in, out, outputs of the parameters alone, array operations */
@@ -544,7 +544,7 @@ BF_INLINE void _fkstep1_v1(double v_q1, double v_q2, double v_q3, double v_q4, d
     const double v__c42 = 9.0*v_q2;
     out[0] = 0.0;
     out[1] = 4.0*v__c0 + 4.0*v__c1 + v__c10*v__c11 + v__c10*v__c15 + v__c11*v__c12 + v__c12*v__c14 + v__c13*v__c14 + v__c13*v__c15 + v__c16*v__c17 + v__c17*v__c18 + v__c19*v__c8 + v__c19*v__c9 + v__c2*v__c3 + v__c2*v__c4 + v__c2*v__c5 + 24.0*v__c20 + 48.0*v__c3*v__c9 + v__c6*v__c7 + v__c7*v__c8 + v__c7*v__c9 + 4.0*v__s2 + 4.0*(v_q2*v_q2*v_q2*v_q2);
-    out[2] = -v__c0*v__c34 + v__s8*v__c0 + v__c1*v__c34 + v__s7*v__c1 + v__c10*v__c26 - 3.0*v__c10*v__c39 + v__s4*v__c10 + v__s8*v__c10*v_q1 + v__c12*v__c30 + v__s5*v__c12 + v__c13*v__c26 + v__s4*v__c13 + v__c16*v__c36 + v__s0*v__c16 + v__c18*v__c36 + v__s0*v__c18 + v__c20*v__c41 + v__s19*v__c20 + v__c21*v_q2 + v__c21*v_q3 + v__c22*v__c37 + v__s21*v__c22 + v__c23*v__c4 + v__c23*v__c6 + v__c24*v__c5 + v__c24*v__c8 + v__c25*v_q1 + v__c25*v_q2 - v__c27*v__c41 + v__s16*v__c27 - v__c28*v__c40 + v__s17*v__c28 + v__c29*v__c40 + v__s18*v__c29 + v__c30*v__c9*v_q1 + v_ra*v__c31*v__c42 + v__s20*v__c31 + v__c32*v__c34 + v__s7*v__c32 - v__c35*v__c41 + v__s16*v__c35 + v__c37*v_g*v_q2 - v__c38*v__c41 + v__s16*v__c38 + v__c39*v__c42*v__c9 + v__s12*v__c4 + v__s10*v__c5 + v__s12*v__c6 + v__s10*v__c8 + v__s3*v_q2 + v__s3*v_q3 + v__s6*v_q1;
+    out[2] = v__s8*v__c0 - v__c0*v__c34 + v__c1*v__c34 + v__s7*v__c1 + v__c10*v__c26 - 3.0*v__c10*v__c39 + v__s4*v__c10 + v__s8*v__c10*v_q1 + v__c12*v__c30 + v__s5*v__c12 + v__c13*v__c26 + v__s4*v__c13 + v__c16*v__c36 + v__s0*v__c16 + v__c18*v__c36 + v__s0*v__c18 + v__c20*v__c41 + v__s19*v__c20 + v__c21*v_q2 + v__c21*v_q3 + v__c22*v__c37 + v__s21*v__c22 + v__c23*v__c4 + v__c23*v__c6 + v__c24*v__c5 + v__c24*v__c8 + v__c25*v_q1 + v__c25*v_q2 - v__c27*v__c41 + v__s16*v__c27 - v__c28*v__c40 + v__s17*v__c28 + v__c29*v__c40 + v__s18*v__c29 + v__c30*v__c9*v_q1 + v_ra*v__c31*v__c42 + v__s20*v__c31 + v__c32*v__c34 + v__s7*v__c32 - v__c35*v__c41 + v__s16*v__c35 + v__c37*v_g*v_q2 - v__c38*v__c41 + v__s16*v__c38 + v__c39*v__c42*v__c9 + v__s12*v__c4 + v__s10*v__c5 + v__s12*v__c6 + v__s10*v__c8 + v__s3*v_q2 + v__s3*v_q3 + v__s6*v_q1;
 }
 /* _fkstep1_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fkstep1_v1_shape[4] = {9, 3, 1, 195};  /* in, out, outputs of the parameters alone, array operations */
@@ -1142,7 +1142,7 @@ BF_INLINE void _fkchart2_step2_g(double v_q1, double v_q2, double v_q3, double v
     const double v__c28 = v__s17*v__c6;
     out[0] = 0.0;
     out[1] = 3.0*v_ra*(v__c0 + v__c1 + v__c10 + v__c11 - v__c12*v__c8 - 2.0*v__c13 - 2.0*v__c14 + v__s2*v__c2 + v__c3*v_q2 + v__c3*v_q3 - v__c4*v__c8*v_q3 + v__s0*v__c4 + v__s1*v__c5 + v__s1*v__c6 + v__c7*v__c8 + v__c8*v__c9);
-    out[2] = -v__c0*v__c18 + v__s4*v__c0 + v__c1*v__c18 + v__s4*v__c1 - v__c10*v__c26 + v__s4*v__c10 + v__c11*v__c26 + v__s4*v__c11 + v__s12*v__c12*v_q2 + v__s12*v__c13 + v__s12*v__c14 + v__c15*v_q2 + v__c15*v_q3 + v__c16*v_q2 + v__c16*v_q3 + v__c17*v__c27*v__c6 + v__c17*v__c28 + v__s8*v__c17*v_q3 + v__s9*v__c17 + v__c19*v__c27 + v__s10*v__c19 + 8.0*v__c19*v_q1 - 12.0*v__c2*v__c24 + v__s12*v__c2*v__c4 + v__s11*v__c2 + v__s5*v__c2*v_v1 + v__c20*v__c7 + v__c20*v__c9 + v__c21*v__c22 + v__c21*v__c7 + v__s18*v__c23*v_q1 + v__s5*v__c23 + v__s18*v__c24*v_q2 + v__s8*v__c24 - v__c25*v_q1 + v__c25*v_q3 - v__c26*v__c7*v_q2 + v__c28*v_q2*v_v1 + v__s6*v__c4 + v__s7*v__c5 + v__s7*v__c6 - 8.0*v__c7*v_q3*v_v1;
+    out[2] = v__s4*v__c0 - v__c0*v__c18 + v__c1*v__c18 + v__s4*v__c1 - v__c10*v__c26 + v__s4*v__c10 + v__c11*v__c26 + v__s4*v__c11 + v__s12*v__c12*v_q2 + v__s12*v__c13 + v__s12*v__c14 + v__c15*v_q2 + v__c15*v_q3 + v__c16*v_q2 + v__c16*v_q3 + v__c17*v__c27*v__c6 + v__c17*v__c28 + v__s8*v__c17*v_q3 + v__s9*v__c17 + v__c19*v__c27 + v__s10*v__c19 + 8.0*v__c19*v_q1 - 12.0*v__c2*v__c24 + v__s12*v__c2*v__c4 + v__s11*v__c2 + v__s5*v__c2*v_v1 + v__c20*v__c7 + v__c20*v__c9 + v__c21*v__c22 + v__c21*v__c7 + v__s18*v__c23*v_q1 + v__s5*v__c23 + v__s18*v__c24*v_q2 + v__s8*v__c24 - v__c25*v_q1 + v__c25*v_q3 - v__c26*v__c7*v_q2 + v__c28*v_q2*v_v1 + v__s6*v__c4 + v__s7*v__c5 + v__s7*v__c6 - 8.0*v__c7*v_q3*v_v1;
 }
 /* _fkchart2_step2_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fkchart2_step2_g_shape[4] = {10, 3, 1, 156};  /* in, out, outputs of the parameters alone, array operations */
@@ -1168,9 +1168,9 @@ BF_INLINE void _rps_coefficients(double v_q1, double v_q2, double v_q3, double v
     const double v__c4 = (v_q4*v_q4);
     const double v__c5 = (v_rb*v_rb);
     const double v__c6 = (v_ra*v_ra);
-    const double v__c7 = -2.0*v__c5 + 2.0*v__c6 + (v_q5*v_q5);
+    const double v__c7 = 2.0*v__c6 - 2.0*v__c5 + (v_q5*v_q5);
     const double v__c8 = v__c4 + v__c7;
-    const double v__c9 = -v__c3 + v__c8;
+    const double v__c9 = v__c8 - v__c3;
     const double v__c10 = 8.0*v_q5;
     const double v__c11 = v__c3 + v__c8;
     const double v__c12 = v__c0*v_q6;
@@ -1322,7 +1322,7 @@ BF_INLINE void _rps_equations(double v_u4, double v_u5, double v_u6, double v_q1
     const double v__c84 = v__c82*v_q6;
     const double v__c85 = v__c11*v__c33;
     const double v__c86 = v__c33*v__c8;
-    out[0] = -v__c1*v__c10 + v__c1*v__c13 + v__c1*v__c14 + v__c1*v__c17 + v__c1*v__c5 - v__c10 + v__c13 + v__c15*v__c4 - v__c15 - v__c17 + v__c2 + v__c20*v_u5 + v__c21 + v__c26 + v__c4*v__c7 + v__c5 - v__c7;
+    out[0] = v__c1*v__c13 - v__c1*v__c10 + v__c1*v__c14 + v__c1*v__c17 + v__c1*v__c5 - v__c10 + v__c13 + v__c15*v__c4 - v__c15 - v__c17 + v__c2 + v__c20*v_u5 + v__c21 + v__c26 + v__c4*v__c7 + v__c5 - v__c7;
     out[1] = v__c12*v__c27 - v__c16*v__c27 + v__c22*v__c27 - v__c23*v__c27 + v__c24*v__c27 + v__c25*v__c27 + v__c26 + v__c27*v__c30 + v__c27*v__c31 + v__c27*v__c32 - v__c27*v__c9 + v__c28 + v__c30 - v__c31 - v__c32 - v__c35*v_u5 + v__c37;
     out[2] = v__c14*v__c27 + v__c21 - v__c27*v__c45 - v__c27*v__c48 + v__c27*v__c49 + v__c27*v__c52 + v__c27*v__c53 + v__c36*v__c4 + v__c37 - v__c38 + v__c39 + v__c4*v__c51 + v__c40 + v__c41 - v__c43 - v__c44 - v__c45 - v__c46 + v__c48 + v__c49 + v__c50 - v__c51 - v__c52 - v__c53 + v__c54 + v__c55 + v__c56*v_u6;
     out[3] = v__c1*v__c58 + v__c1*v__c60 + v__c1*v__c63 - v__c1*v__c64 + v__c19*v__c57 + v__c2*v__c61 + v__c22*v__c61 + v__c3*v__c61 + v__c58 - v__c60 + v__c62 + v__c63 - v__c64;
@@ -1412,11 +1412,11 @@ void bonered_rows__rps_platform(long n, const double *const *in, const long *ste
 /* Study coordinates (chart x0 = 1) of the platform from R (row-major) and t. */
 BF_INLINE void _rps_study(double v_r0, double v_r1, double v_r2, double v_r3, double v_r4, double v_r5, double v_r6, double v_r7, double v_r8, double v_t0, double v_t1, double v_t2, double *restrict out)
 {
-    const double v__c0 = -v_r5 + v_r7;
+    const double v__c0 = v_r7 - v_r5;
     const double v__c1 = v_r0 + v_r4 + v_r8 + 1.0;
     const double v__c2 = (1.0/(v__c1));
     const double v__c3 = v_r2 - v_r6;
-    const double v__c4 = -v_r1 + v_r3;
+    const double v__c4 = v_r3 - v_r1;
     const double v__c5 = (0.5)*v_t0;
     const double v__c6 = (0.5)*v__c4;
     const double v__c7 = (0.5)*v_t2;
@@ -1424,7 +1424,7 @@ BF_INLINE void _rps_study(double v_r0, double v_r1, double v_r2, double v_r3, do
     out[1] = v__c2*v__c3;
     out[2] = v__c2*v__c4;
     out[3] = v__c2*(v__c0*v__c5 + (0.5)*v__c3*v_t1 + v__c6*v_t2);
-    out[4] = v__c2*(-v__c1*v__c5 + (0.5)*v__c3*v_t2 - v__c6*v_t1);
+    out[4] = v__c2*((0.5)*v__c3*v_t2 - v__c1*v__c5 - v__c6*v_t1);
     out[5] = v__c2*(-v__c0*v__c7 - 0.5*v__c1*v_t1 + (0.5)*v__c4*v_t0);
     out[6] = v__c2*((0.5)*v__c0*v_t1 - v__c1*v__c7 - v__c3*v__c5);
 }
@@ -1485,7 +1485,7 @@ BF_INLINE void _fk_newton(double v_g, double v_v1, double v_v2, double v_q1, dou
     out[12] = v__c15 + v__s4;
     out[13] = v__c15*v_q3 + v__c16 - v__c8 + v__s1*v_q3;
     out[14] = v__c14 - 6.0;
-    out[15] = -v__c15 + v__s4;
+    out[15] = v__s4 - v__c15;
 }
 /* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fk_newton_shape[4] = {11, 16, 5, 61};  /* in, out, outputs of the parameters alone, array operations */

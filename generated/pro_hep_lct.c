@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 59661b59da88bef9e0fc704ac97939b02a32cb7c7fe7816781ff1da738b9f25e
+ * Derivation hash: c7281bddf8df36e82fa57e945886cc815b743af9f845d8a6305e720b4544afa2
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "59661b59da88bef9e0fc704ac97939b02a32cb7c7fe7816781ff1da738b9f25e";
+const char bonered_derivation_hash[] = "c7281bddf8df36e82fa57e945886cc815b743af9f845d8a6305e720b4544afa2";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -43,7 +43,7 @@ BF_INLINE void _step2_t1(double v_yu1, double v_yu2, double v_yd1, double v_yd2,
 {
     const double v__s0 = -(v_d*v_d) - 4.0*(v_l1*v_l1) + 4.0*(v_l2*v_l2);
     const double v__c0 = 16.0*v_l1*v_yd1;
-    const double v__c1 = -v__s0 + 8.0*v_d*v_yd2 + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
+    const double v__c1 = 8.0*v_d*v_yd2 - v__s0 + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
     out[0] = v__c0 - v__c1;
     out[1] = -8.0*v_l1*(v_d + 4.0*v_yd2);
     out[2] = -v__c0 - v__c1;
@@ -53,11 +53,11 @@ BF_INLINE void _step2_t1(double v_yu1, double v_yu2, double v_yd1, double v_yd2,
 BF_INLINE void _step3_w1(double v_yu1, double v_yu2, double v_yd1, double v_yd2, double v_q5, double v_q4, double v_t1, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
     const double v__s0 = (v_d*v_d) - 4.0*v_d*v_lq4d + 4.0*(v_l3*v_l3) - 4.0*(v_l4*v_l4) + 4.0*(v_lq4d*v_lq4d);
-    const double v__s1 = -8.0*v_d + 16.0*v_lq4d;
+    const double v__s1 = 16.0*v_lq4d - 8.0*v_d;
     const double v__s2 = v_d - 2.0*v_lq4d;
     const double v__c0 = 16.0*v_l3*v_yd1;
     const double v__c1 = v__s0 + v__s1*v_yd2 + 16.0*(v_yd1*v_yd1) + 16.0*(v_yd2*v_yd2);
-    out[0] = -v__c0 + v__c1;
+    out[0] = v__c1 - v__c0;
     out[1] = -8.0*v_l3*(v__s2 - 4.0*v_yd2);
     out[2] = v__c0 + v__c1;
 }
@@ -85,51 +85,50 @@ BF_INLINE void _jac(double v_Xu, double v_Yu, double v_Xd, double v_Yd, double v
     const double v__s8 = v__k6;
     const double v__s9 = v__k7;
     const double v__s10 = v__k1 + v__k4 + v__k5 + v__k6 + v__k7;
-    const double v__s11 = -v__k3*v_l3 + 16.0*v_l3*v_lq4d;
+    const double v__s11 = 16.0*v_l3*v_lq4d - v__k3*v_l3;
     const double v__s12 = v__k3 - 16.0*v_lq4d;
     const double v__s13 = v__k8;
     const double v__s14 = -v__k8;
-    const double v__c0 = -2.0*v_q4 + 2.0*v_q5;
-    const double v__c1 = 16.0*v_Yd;
-    const double v__c2 = 16.0*v_l1*v_t1;
-    const double v__c3 = 8.0*v_Yd;
-    const double v__c4 = (v_Xd*v_Xd);
-    const double v__c5 = 8.0*v_t1;
-    const double v__c6 = (v_Yd*v_Yd);
-    const double v__c7 = -v_Xd*v__c2 + v_l1*v__c1 + v_d*v__c3*v_t1 - v__c4*v__c5 - v__c5*v__c6 + v__s3*v_t1 + v__s4;
-    const double v__c8 = 16.0*v_l3*v_w1;
-    const double v__c9 = 8.0*v_w1;
-    const double v__c10 = v_Xd*v__c8 + v__s12*v_Yd*v_w1 - v_l3*v__c1 + v__c4*v__c9 + v__c6*v__c9 + v__s10*v_w1 + v__s11;
-    const double v__c11 = 2.0*v_Xu - 2.0*v_lq5;
-    const double v__c12 = 8.0*v_Xd;
-    const double v__c13 = (v_t1*v_t1);
-    const double v__c14 = v__c12*v__c13 + v__c12 + 8.0*v_l1*v__c13 - 8.0*v_l1;
-    const double v__c15 = -v__c3;
-    const double v__c16 = 4.0*v_d;
-    const double v__c17 = v__c13*v__c16 - v__c13*v__c3 + v__c15 + v__c16 + v__c2;
-    const double v__c18 = 8.0*v_l3;
-    const double v__c19 = (v_w1*v_w1);
-    const double v__c20 = v__c12*v__c19 + v__c12 + v__c18*v__c19 - v__c18;
-    const double v__c21 = v__c19*v__c3;
-    const double v__c22 = (1.0/(v__c7));
-    const double v__c23 = (1.0/(v__c10));
+    const double v__c0 = 2.0*v_q5 - 2.0*v_q4;
+    const double v__c1 = 16.0*v_l1*v_t1;
+    const double v__c2 = 8.0*v_Yd;
+    const double v__c3 = (v_Xd*v_Xd);
+    const double v__c4 = 8.0*v_t1;
+    const double v__c5 = (v_Yd*v_Yd);
+    const double v__c6 = 16.0*v_l1*v_Yd - v_Xd*v__c1 + v_d*v__c2*v_t1 - v__c3*v__c4 - v__c4*v__c5 + v__s3*v_t1 + v__s4;
+    const double v__c7 = 16.0*v_l3*v_w1;
+    const double v__c8 = 8.0*v_w1;
+    const double v__c9 = v_Xd*v__c7 + v__s12*v_Yd*v_w1 - 16.0*v_l3*v_Yd + v__c3*v__c8 + v__c5*v__c8 + v__s10*v_w1 + v__s11;
+    const double v__c10 = 2.0*v_Xu - 2.0*v_lq5;
+    const double v__c11 = 8.0*v_Xd;
+    const double v__c12 = (v_t1*v_t1);
+    const double v__c13 = v__c11*v__c12 + v__c11 + 8.0*v_l1*v__c12 - 8.0*v_l1;
+    const double v__c14 = -v__c2;
+    const double v__c15 = 4.0*v_d;
+    const double v__c16 = v__c1 + v__c12*v__c15 - v__c12*v__c2 + v__c14 + v__c15;
+    const double v__c17 = 8.0*v_l3;
+    const double v__c18 = (v_w1*v_w1);
+    const double v__c19 = v__c11*v__c18 + v__c11 + v__c17*v__c18 - v__c17;
+    const double v__c20 = v__c18*v__c2;
+    const double v__c21 = (1.0/(v__c6));
+    const double v__c22 = (1.0/(v__c9));
     out[0] = 1.0;
     out[1] = v__c0;
-    out[2] = v__c7;
-    out[3] = v__c10;
+    out[2] = v__c6;
+    out[3] = v__c9;
     out[4] = 2.0;
-    out[5] = fabs(v__c0) + fabs(v__c11);
-    out[6] = fabs(v__c14) + fabs(v__c17) + fabs(v__c7);
-    out[7] = fabs(v__c10) + fabs(v__c20) + fabs(v__s13*v__c19 + v__c21 + v__c3 - v__c8 + v__s13);
+    out[5] = fabs(v__c0) + fabs(v__c10);
+    out[6] = fabs(v__c13) + fabs(v__c16) + fabs(v__c6);
+    out[7] = fabs(v__c19) + fabs(v__c9) + fabs(v__s13*v__c18 + v__c2 + v__c20 - v__c7 + v__s13);
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = v__c14*v__c22;
-    out[11] = -v__c17*v__c22;
+    out[10] = v__c13*v__c21;
+    out[11] = -v__c16*v__c21;
     out[12] = 0.0;
     out[13] = 0.0;
-    out[14] = -v__c20*v__c23;
-    out[15] = v__c23*(v__c15 + v__s14*v__c19 - v__c21 + v__c8 + v__s14);
-    out[16] = v__c11/v__c0;
+    out[14] = -v__c19*v__c22;
+    out[15] = v__c22*(v__c14 + v__s14*v__c18 - v__c20 + v__c7 + v__s14);
+    out[16] = v__c10/v__c0;
     out[17] = 1.0;
     out[18] = 0.0;
     out[19] = 0.0;
@@ -229,7 +228,7 @@ void bonered_rows__fkstep1_yu3(long n, const double *const *in, const long *step
 /* Coefficients (A, B, C) of the generator solved for yu1 (from lex basis of the upper planar mechanism). */
 BF_INLINE void _fkstep2_yu1(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_yu3, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
-    const double v__s0 = -(v_ld4*v_ld4) + (v_lq5*v_lq5);
+    const double v__s0 = (v_lq5*v_lq5) - (v_ld4*v_ld4);
     out[0] = 4.0;
     out[1] = 4.0*v_lq5;
     out[2] = v__s0 + (v_q4*v_q4) - 2.0*v_q4*v_q5 + (v_q5*v_q5);
@@ -566,10 +565,10 @@ BF_INLINE void _fkstep3_yd2(double v_t1, double v_w1, double v_q4, double v_q5, 
     const double v__s26 = v__k33 + v__k35;
     const double v__s27 = v__k21 + v__k35;
     const double v__s28 = v__k17 + v__k22;
-    const double v__s29 = -v__k13 + 64.0*v_l3*v_lq4d;
+    const double v__s29 = 64.0*v_l3*v_lq4d - v__k13;
     const double v__s30 = v__k10 + v__k11 + v__k14 + v__k8 + v__k9;
     const double v__s31 = v__k23 + v__k24 + v__k25 + v__k26 + v__k30;
-    const double v__s32 = -v__k28 + 128.0*v_l3*v_lq4d;
+    const double v__s32 = 128.0*v_l3*v_lq4d - v__k28;
     const double v__s33 = v__k32 + v__k34;
     const double v__s34 = v__k37;
     const double v__s35 = v__k39;
@@ -870,8 +869,8 @@ BF_INLINE void _fkstep4_yd1(double v_t1, double v_w1, double v_q4, double v_q5, 
     const double v__s11 = -v__k9;
     const double v__s12 = 4.0*v_l3*v_lq4d;
     const double v__s13 = v__k2 + v__k3 + v__k4 - v__k5 - v__k6 - v__k7;
-    const double v__s14 = -v__k9 + 4.0*v_l3*v_lq4d;
-    const double v__s15 = -4.0*v_d + 4.0*v_lq4d;
+    const double v__s14 = 4.0*v_l3*v_lq4d - v__k9;
+    const double v__s15 = 4.0*v_lq4d - 4.0*v_d;
     const double v__c0 = (v_t1*v_t1);
     const double v__c1 = 4.0*v__c0;
     const double v__c2 = (v_w1*v_w1);
@@ -946,7 +945,7 @@ void bonered_rows__fkchart1_step1_yu3(long n, const double *const *in, const lon
 /* Coefficients (A, B, C) of the generator solved for yu1 (from lex basis of the upper planar mechanism). */
 BF_INLINE void _fkchart1_step2_yu1(double v_t1, double v_w1, double v_q4, double v_q5, double v_yu2, double v_yu3, double v_Dz, double v_lq5, double v_ld4, double v_l1, double v_l2, double v_l3, double v_l4, double v_d, double v_lq4d, double v_c, double v_Dn, double *restrict out)
 {
-    const double v__s0 = -(v_ld4*v_ld4) + (v_lq5*v_lq5);
+    const double v__s0 = (v_lq5*v_lq5) - (v_ld4*v_ld4);
     out[0] = 4.0;
     out[1] = 4.0*v_lq5;
     out[2] = v__s0 + (v_q4*v_q4) - 2.0*v_q4*v_q5 + (v_q5*v_q5);
@@ -1288,10 +1287,10 @@ BF_INLINE void _fkchart1_step3_yd1(double v_t1, double v_w1, double v_q4, double
     const double v__s26 = v__k32 + v__k34;
     const double v__s27 = v__k21 + v__k34;
     const double v__s28 = v__k16 + v__k22;
-    const double v__s29 = -v__k13 + 64.0*v_l3*v_lq4d;
+    const double v__s29 = 64.0*v_l3*v_lq4d - v__k13;
     const double v__s30 = v__k10 + v__k11 + v__k14 + v__k8 + v__k9;
     const double v__s31 = v__k23 + v__k24 + v__k25 + v__k26 + v__k29;
-    const double v__s32 = -v__k28 + 128.0*v_l3*v_lq4d;
+    const double v__s32 = 128.0*v_l3*v_lq4d - v__k28;
     const double v__s33 = v__k31 + v__k33;
     const double v__s34 = -v__k36;
     const double v__s35 = v__k39;
@@ -1673,7 +1672,7 @@ BF_INLINE void _fk_newton(double v_yu2, double v_yu3, double v_yu1, double v_yd2
     const double v__k6 = 4.0*(v_lq4d*v_lq4d);
     const double v__k7 = v__k3*v_l3;
     const double v__k8 = -4.0*v_d*v_lq4d;
-    const double v__s0 = -(v_ld4*v_ld4) + (v_lq5*v_lq5);
+    const double v__s0 = (v_lq5*v_lq5) - (v_ld4*v_ld4);
     const double v__s1 = v__k0;
     const double v__s2 = v__k1;
     const double v__s3 = v__k2;
@@ -1686,8 +1685,8 @@ BF_INLINE void _fk_newton(double v_yu2, double v_yu3, double v_yu1, double v_yd2
     const double v__s10 = v__k8;
     const double v__s11 = 16.0*v_l3*v_lq4d;
     const double v__s12 = v__k0 + v__k4 + v__k5 + v__k6 + v__k8;
-    const double v__s13 = -v__k7 + 16.0*v_l3*v_lq4d;
-    const double v__s14 = -v__k3 + 16.0*v_lq4d;
+    const double v__s13 = 16.0*v_l3*v_lq4d - v__k7;
+    const double v__s14 = 16.0*v_lq4d - v__k3;
     const double v__c0 = 4.0*v_lq5;
     const double v__c1 = (v_t1*v_t1);
     const double v__c2 = 8.0*v_d;
@@ -1734,7 +1733,7 @@ BF_INLINE void _fk_newton(double v_yu2, double v_yu3, double v_yu1, double v_yd2
     out[26] = 0.0;
     out[27] = 0.0;
     out[28] = v__c11*v__c8 + v__s14*v__c11 + 32.0*v__c15 + v__c8 + v__s14;
-    out[29] = -v__c11*v__c13 + v__c11*v__c16 + v__c13 + v__c16;
+    out[29] = v__c11*v__c16 - v__c11*v__c13 + v__c13 + v__c16;
 }
 /* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fk_newton_shape[4] = {20, 30, 20, 91};  /* in, out, outputs of the parameters alone, array operations */

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b6848582f07a3aef18d844c1cf124434fcce722606e87f03022431a4ead03f60
+ * Derivation hash: b4049ae424ad768b29572d322ec3d2cfdf07f6f7cee750952ca088eb81c4ce9c
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b6848582f07a3aef18d844c1cf124434fcce722606e87f03022431a4ead03f60";
+const char bonered_derivation_hash[] = "b4049ae424ad768b29572d322ec3d2cfdf07f6f7cee750952ca088eb81c4ce9c";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -38,7 +38,7 @@ BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, doub
     out[2] = v__c4*(v__c2 - v__c6);
     out[3] = v__c8*(v__c1*v_y + v__c2*v_z - v__c3*v_x + v__c5*v_y - v__c6*v_z + v__c7);
     out[4] = v__c8*(v__c0*v__c1*v_y + v__c0*v__c2*v_z + v__c1*v_z - v__c2*v_y - v__c3*v__c7 - v_x);
-    out[5] = v__c8*(-v__c0*v__c3*v_y + v__c1*v__c2*v_z + v__c2*v_x - v__c6*v_x - v__c9 - v_y);
+    out[5] = v__c8*(v__c1*v__c2*v_z - v__c0*v__c3*v_y + v__c2*v_x - v__c6*v_x - v__c9 - v_y);
     out[6] = v__c8*(v__c0*v_y - v__c1*v_x - v__c3*v__c9 - v__c3*v_y - v__c5*v_x - v_z);
 }
 
@@ -487,14 +487,14 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__k29 = v__k18 - v__k25 + v__k28;
     const double v__k30 = v__k1*(-v__k3 - v__k6 + 2.0*v_rb);
     const double v__k31 = (0.5)*v__k30;
-    const double v__k32 = -v__k10 + v__k5 + v__k9;
+    const double v__k32 = v__k5 - v__k10 + v__k9;
     const double v__k33 = v__k1*v__k32;
     const double v__k34 = v__k18 + v__k25 - v__k28;
     const double v__k35 = v__k0*v_rb;
     const double v__k36 = v__k4*v__k9;
     const double v__k37 = v__k1*(-v__k35 - v__k36 + v_rb);
     const double v__k38 = -v__k1*v__k32;
-    const double v__k39 = v__k1*(-v__k35 + v__k36 + v_rb);
+    const double v__k39 = v__k1*(v__k36 - v__k35 + v_rb);
     const double v__k40 = v__k1*v__k11;
     const double v__s0 = v__k8;
     const double v__s1 = (0.5)*v__k12;
@@ -558,19 +558,19 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c23 = 2.0*v__c22;
     const double v__c24 = v__c14*v__c6;
     const double v__c25 = v__c16*v__c7;
-    const double v__c26 = v__c25*(-v__c1*v__c14 + v__c1*v__c24 - v__c14 - v__c15*v__c23 + v__c23 + v__c24);
+    const double v__c26 = v__c25*(v__c1*v__c24 - v__c1*v__c14 - v__c14 - v__c15*v__c23 + v__c23 + v__c24);
     const double v__c27 = v__s1*v__c21 + v__s0*v__c26;
     const double v__c28 = v__c27 + v__s5 + v_x;
     const double v__c29 = v__c14*v__c16;
     const double v__c30 = v__c20*v__c29;
     const double v__c31 = v__c15*v__c6;
-    const double v__c32 = v__c25*(-v__c1*v__c15 + v__c1*v__c31 - v__c1*v__c6 + 8.0*v__c14*v__c22 - v__c15 + v__c2 + v__c31 - v__c6);
+    const double v__c32 = v__c25*(v__c1*v__c31 - v__c1*v__c15 - v__c1*v__c6 + 8.0*v__c14*v__c22 - v__c15 + v__c2 + v__c31 - v__c6);
     const double v__c33 = v__s3*v__c30 + v__s2*v__c32;
     const double v__c34 = v__s4 + v_y;
     const double v__c35 = v__c33 + v__c34;
     const double v__c36 = v__c27*v__c35 - v__c28*v__c33;
     const double v__c37 = v__c12*v__c28 - v__c13*v__c27;
-    const double v__c38 = -v__c12*v__c35 + v__c13*v__c33;
+    const double v__c38 = v__c13*v__c33 - v__c12*v__c35;
     const double v__c39 = 2.0*v__c29;
     const double v__c40 = -v__c19*v__c37 - v__c38*v__c39;
     const double v__c41 = v__c20*v__c39;
@@ -588,7 +588,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c53 = v__c51 + v__c52;
     const double v__c54 = v__c48*v__c53 - v__c49*v__c51;
     const double v__c55 = v__c45*v__c49 - v__c46*v__c48;
-    const double v__c56 = -v__c45*v__c53 + v__c46*v__c51;
+    const double v__c56 = v__c46*v__c51 - v__c45*v__c53;
     const double v__c57 = -v__c19*v__c55 - v__c39*v__c56;
     const double v__c58 = v__c16*v__c17*v__c18*v__c3*v__c56*v__c8*v__c9 - v__c41*v__c55 - v__c42*v__c54;
     const double v__c59 = v__s20*v__c11 + v__s17*v__c4;
@@ -600,7 +600,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c65 = v__c63 + v__c64;
     const double v__c66 = v__c61*v__c65 - v__c62*v__c63;
     const double v__c67 = v__c59*v__c62 - v__c60*v__c61;
-    const double v__c68 = -v__c59*v__c65 + v__c60*v__c63;
+    const double v__c68 = v__c60*v__c63 - v__c59*v__c65;
     const double v__c69 = -v__c19*v__c67 - v__c39*v__c68;
     const double v__c70 = v__c16*v__c17*v__c18*v__c3*v__c68*v__c8*v__c9 - v__c41*v__c67 - v__c42*v__c66;
     const double v__c71 = v__s26*v__c11 + v__s24*v__c4;
@@ -611,7 +611,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c76 = v__c64 + v__c75;
     const double v__c77 = v__c73*v__c76 - v__c74*v__c75;
     const double v__c78 = v__c71*v__c74 - v__c72*v__c73;
-    const double v__c79 = -v__c71*v__c76 + v__c72*v__c75;
+    const double v__c79 = v__c72*v__c75 - v__c71*v__c76;
     const double v__c80 = -v__c19*v__c78 - v__c39*v__c79;
     const double v__c81 = v__c16*v__c17*v__c18*v__c3*v__c79*v__c8*v__c9 - v__c41*v__c78 - v__c42*v__c77;
     const double v__c82 = v__s32*v__c11 + v__s30*v__c4;
@@ -622,7 +622,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c87 = v__c34 + v__c86;
     const double v__c88 = v__c84*v__c87 - v__c85*v__c86;
     const double v__c89 = v__c82*v__c85 - v__c83*v__c84;
-    const double v__c90 = -v__c82*v__c87 + v__c83*v__c86;
+    const double v__c90 = v__c83*v__c86 - v__c82*v__c87;
     const double v__c91 = -v__c19*v__c89 - v__c39*v__c90;
     const double v__c92 = v__c16*v__c17*v__c18*v__c3*v__c8*v__c9*v__c90 - v__c41*v__c89 - v__c42*v__c88;
     const double v__c93 = v__s34*v__c4 + v__c44;
@@ -633,9 +633,9 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c98 = v__c52 + v__c97;
     const double v__c99 = v__c95*v__c98 - v__c96*v__c97;
     const double v__c100 = v__c93*v__c96 - v__c94*v__c95;
-    const double v__c101 = -v__c93*v__c98 + v__c94*v__c97;
+    const double v__c101 = v__c94*v__c97 - v__c93*v__c98;
     const double v__c102 = -v__c100*v__c19 - v__c101*v__c39;
-    const double v__c103 = -v__c100*v__c41 + v__c101*v__c16*v__c17*v__c18*v__c3*v__c8*v__c9 - v__c42*v__c99;
+    const double v__c103 = v__c101*v__c16*v__c17*v__c18*v__c3*v__c8*v__c9 - v__c100*v__c41 - v__c42*v__c99;
     const double v__c104 = (1.0/(v_q1));
     const double v__c105 = (1.0/(v_q2));
     const double v__c106 = (1.0/(v_q3));
@@ -729,7 +729,7 @@ BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha,
     const double v__k31 = -v__k1*v__k30;
     const double v__k32 = (0.5)*v__k31;
     const double v__k33 = -v__k32;
-    const double v__k34 = v__k1*(-v__k10 + v__k12 + v__k2);
+    const double v__k34 = v__k1*(v__k12 - v__k10 + v__k2);
     const double v__k35 = (0.25)*v__k34;
     const double v__k36 = v__k16*v__k21;
     const double v__k37 = v__k21*v__k26;
@@ -739,7 +739,7 @@ BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha,
     const double v__k41 = v__k30*v__k40;
     const double v__k42 = v__k0*v_rb;
     const double v__k43 = 2.0*v__k11;
-    const double v__k44 = -v__k42 + v__k43 + v_rb;
+    const double v__k44 = v__k43 - v__k42 + v_rb;
     const double v__k45 = v__k40*v__k44;
     const double v__k46 = v__k37 + v__k45;
     const double v__k47 = v__k36 + v__k41;
@@ -756,7 +756,7 @@ BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha,
     const double v__k58 = (0.25)*v__k57;
     const double v__k59 = v__k16 - v__k17 + v__k19;
     const double v__k60 = v__k22*v__k59;
-    const double v__k61 = -v__k22*(-v__k24 + v__k25 - v_ra);
+    const double v__k61 = -v__k22*(v__k25 - v__k24 - v_ra);
     const double v__k62 = v__k58 + v__k61;
     const double v__k63 = -v__k56 - v__k60;
     const double v__k64 = 420.0*v__k1*v_rb*v_tb;
@@ -871,17 +871,17 @@ BF_INLINE void _limit_values(double v_x, double v_y, double v_z, double v_alpha,
     out[4] = v_q5;
     out[5] = v_q6;
     out[6] = acos(v__c18*(v__c0 + v__s7*v__c1 + v__s6*v__c13 + v__s5*v__c16 + v__s8*v__c4));
-    out[7] = acos(v__c18*(v__c13*v__c21 + v__c16*v__c20 + v__c17*v__c19 + v__s5*(-v__c1*v__c17 + v__c13*v__c22 + v__c16*v__c23) + v__s6*(v__c10*v__c13 + v__c15*v__c16 + v__c17*v__c4)));
+    out[7] = acos(v__c18*(v__c13*v__c21 + v__c16*v__c20 + v__c17*v__c19 + v__s5*(v__c13*v__c22 - v__c1*v__c17 + v__c16*v__c23) + v__s6*(v__c10*v__c13 + v__c15*v__c16 + v__c17*v__c4)));
     out[8] = acos(v__c28*(v__c0 + v__s17*v__c1 + v__s16*v__c25 + v__s15*v__c26 + v__s18*v__c4));
-    out[9] = acos(v__c28*(v__c19*v__c27 + v__c20*v__c26 + v__c21*v__c25 + v__s15*(-v__c1*v__c27 + v__c22*v__c25 + v__c23*v__c26) + v__s16*(v__c10*v__c25 + v__c15*v__c26 + v__c27*v__c4)));
+    out[9] = acos(v__c28*(v__c19*v__c27 + v__c20*v__c26 + v__c21*v__c25 + v__s15*(v__c22*v__c25 - v__c1*v__c27 + v__c23*v__c26) + v__s16*(v__c10*v__c25 + v__c15*v__c26 + v__c27*v__c4)));
     out[10] = acos(v__c32*(v__c0 + v__s26*v__c1 + v__s24*v__c29 + v__s25*v__c30 + v__s27*v__c4));
-    out[11] = acos(v__c32*(v__c19*v__c31 + v__c20*v__c30 + v__c21*v__c29 + v__s24*(v__c10*v__c29 + v__c15*v__c30 + v__c31*v__c4) + v__s25*(-v__c1*v__c31 + v__c22*v__c29 + v__c23*v__c30)));
+    out[11] = acos(v__c32*(v__c19*v__c31 + v__c20*v__c30 + v__c21*v__c29 + v__s24*(v__c10*v__c29 + v__c15*v__c30 + v__c31*v__c4) + v__s25*(v__c22*v__c29 - v__c1*v__c31 + v__c23*v__c30)));
     out[12] = acos(v__c36*(v__c0 + v__s35*v__c1 + v__s33*v__c33 + v__s34*v__c34 + v__s36*v__c4));
-    out[13] = acos(v__c36*(v__c19*v__c35 + v__c20*v__c34 + v__c21*v__c33 + v__s33*(v__c10*v__c33 + v__c15*v__c34 + v__c35*v__c4) + v__s34*(-v__c1*v__c35 + v__c22*v__c33 + v__c23*v__c34)));
+    out[13] = acos(v__c36*(v__c19*v__c35 + v__c20*v__c34 + v__c21*v__c33 + v__s33*(v__c10*v__c33 + v__c15*v__c34 + v__c35*v__c4) + v__s34*(v__c22*v__c33 - v__c1*v__c35 + v__c23*v__c34)));
     out[14] = acos(v__c44*(v__s46*v__c1 + v__s43*v__c38 + v__s44*v__c40 + v__c41));
-    out[15] = acos(v__c44*(v__c19*v__c43 + v__c20*v__c40 + v__c21*v__c38 + v__s43*(v__c10*v__c38 + v__c15*v__c40 + v__c4*v__c43) + v__s44*(-v__c1*v__c43 + v__c22*v__c38 + v__c23*v__c40)));
+    out[15] = acos(v__c44*(v__c19*v__c43 + v__c20*v__c40 + v__c21*v__c38 + v__s43*(v__c10*v__c38 + v__c15*v__c40 + v__c4*v__c43) + v__s44*(v__c22*v__c38 - v__c1*v__c43 + v__c23*v__c40)));
     out[16] = acos(v__c48*(v__s50*v__c1 + v__c41 + v__s43*v__c45 + v__s49*v__c46));
-    out[17] = acos(v__c48*(v__c19*v__c47 + v__c20*v__c46 + v__c21*v__c45 + v__s43*(v__c10*v__c45 + v__c15*v__c46 + v__c4*v__c47) + v__s49*(-v__c1*v__c47 + v__c22*v__c45 + v__c23*v__c46)));
+    out[17] = acos(v__c48*(v__c19*v__c47 + v__c20*v__c46 + v__c21*v__c45 + v__s43*(v__c10*v__c45 + v__c15*v__c46 + v__c4*v__c47) + v__s49*(v__c22*v__c45 - v__c1*v__c47 + v__c23*v__c46)));
 }
 
 BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict Q)[BF_BLOCK], const double *restrict par, int *restrict ST, double *restrict jac_out, int stream, int public);

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fe6e5ad9551c5ee25766da45210beab98f18472037408ec28e1e356b27792d58
+ * Derivation hash: 2aeb69575b6dfd7388a2b6cd9a6cf28e57251a3cc349dd85e89a0a508deadb04
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fe6e5ad9551c5ee25766da45210beab98f18472037408ec28e1e356b27792d58";
+const char bonered_derivation_hash[] = "2aeb69575b6dfd7388a2b6cd9a6cf28e57251a3cc349dd85e89a0a508deadb04";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -32,8 +32,8 @@ BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, doub
     const double v__c6 = (v__c4*v__c4) + (v__c5*v__c5);
     const double v__c7 = (1.0/(v__c6));
     const double v__c8 = v__c0*v__c1 + v__c2;
-    const double v__c9 = -v__c0*v__c2 + v__c1;
-    const double v__c10 = -v__c4*v__c8 + v__c5*v__c9;
+    const double v__c9 = v__c1 - v__c0*v__c2;
+    const double v__c10 = v__c5*v__c9 - v__c4*v__c8;
     const double v__c11 = v__c10*v__c7;
     const double v__c12 = v__c4*v__c9 + v__c5*v__c8;
     const double v__c13 = v__c12*v__c7;
@@ -56,14 +56,14 @@ BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, doub
     const double v__c30 = 2.0*v__c28 + v_x;
     const double v__c31 = v__c22*(v__c25 + v_y);
     const double v__c32 = 2.0*v__c31;
-    const double v__c33 = v__c21*(-v__c11*v__c32 + 2.0*v__c12*v__c22*v__c30*v__c7 + v__c22*v__c29*v_z - v_d)/v__c29;
+    const double v__c33 = v__c21*(2.0*v__c12*v__c22*v__c30*v__c7 - v__c11*v__c32 + v__c22*v__c29*v_z - v_d)/v__c29;
     const double v__c34 = (0.5)*v__c33;
     const double v__c35 = (1.0/(v__c5));
     const double v__c36 = v__c35*v__c4;
     const double v__c37 = v__c22*v__c30;
-    const double v__c38 = v__c37*(-v__c18 + v__c19 + 1.0);
+    const double v__c38 = v__c37*(v__c19 - v__c18 + 1.0);
     const double v__c39 = v__c12*v__c27;
-    const double v__c40 = -v__c33 + v_z;
+    const double v__c40 = v_z - v__c33;
     const double v__c41 = v__c31*(v__c18 - v__c19 + 1.0);
     const double v__c42 = v__c22*v__c40;
     const double v__c43 = v__c11*v__c42;
@@ -72,11 +72,11 @@ BF_INLINE void _study(double v__f0, double v__f1, double v__f2, double v_x, doub
     out[2] = 0.0;
     out[3] = -v__c13*v__c26 - v__c14*v__c15*v__c24;
     out[4] = v__c13*v__c34 + v__c28;
-    out[5] = -v__c11*v__c34 + v__c26;
+    out[5] = v__c26 - v__c11*v__c34;
     out[6] = v_rb*v__c10*v__c15*v__c17*v__c22 - v__c11*v__c26 - v__c34;
     out[7] = v__c36;
     out[8] = v__c12*v__c22*v__c40*v__c7 - v__c31*v__c39 - 0.5*v__c36*(2.0*v__c37*v__c39 + v__c41 + 2.0*v__c43) - 0.5*v__c38;
-    out[9] = (0.5)*v__c35*v__c4*(-2.0*v__c13*v__c42 + v__c32*v__c39 + v__c38) - v__c37*v__c39 - 0.5*v__c41 - v__c43;
+    out[9] = (0.5)*v__c35*v__c4*(v__c32*v__c39 - 2.0*v__c13*v__c42 + v__c38) - v__c37*v__c39 - 0.5*v__c41 - v__c43;
 }
 
 /* Coefficients (A, B, C) of the generator solved for q4 (from C/P1). */
@@ -136,7 +136,7 @@ BF_INLINE void _step3_q2(double v_x_1, double v_x_2, double v_x_3, double v_y_0,
     const double v__s2 = v__k3;
     const double v__s3 = -v__k3 - v__k4;
     const double v__s4 = -v__k2 - v__k4;
-    const double v__s5 = -v__k5 + 4.0*v_rb;
+    const double v__s5 = 4.0*v_rb - v__k5;
     const double v__s6 = v__k5 + 4.0*v_rb;
     const double v__c0 = (v_x_1*v_x_1);
     out[0] = v__c0 + 1.0;
@@ -311,7 +311,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__s3 = -v__k3;
     const double v__s4 = v__k3;
     const double v__s5 = v__k1;
-    const double v__s6 = -v__k4 + 4.0*v_rb;
+    const double v__s6 = 4.0*v_rb - v__k4;
     const double v__s7 = v__k4 + 4.0*v_rb;
     const double v__s8 = -v__k6;
     const double v__s9 = -v__k8;
@@ -362,8 +362,8 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c12 = v__c11 + (v__c4*v__c4);
     const double v__c13 = (1.0/(v__c12));
     const double v__c14 = v__c0*v__c1 + v__c2;
-    const double v__c15 = -v__c0*v__c2 + v__c1;
-    const double v__c16 = -v__c14*v__c4 + v__c15*v__c5;
+    const double v__c15 = v__c1 - v__c0*v__c2;
+    const double v__c16 = v__c15*v__c5 - v__c14*v__c4;
     const double v__c17 = v__c13*v__c16;
     const double v__c18 = (v__c17*v__c17);
     const double v__c19 = v__c10*v__c18 + v__c10;
@@ -400,7 +400,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c50 = v__c47*v__c49;
     const double v__c51 = v__c50 + v_y;
     const double v__c52 = v__c38*v__c51;
-    const double v__c53 = -v__c33 + v__c35 + 1.0;
+    const double v__c53 = v__c35 - v__c33 + 1.0;
     const double v__c54 = v__c44*v__c53;
     const double v__c55 = 1.0 - v__c36;
     const double v__c56 = (1.0/(v__c55));
@@ -408,10 +408,10 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c58 = v__c55*v_z;
     const double v__c59 = v__c21*v__c43;
     const double v__c60 = 2.0*v__c52;
-    const double v__c61 = -v__c17*v__c60 + v__c38*v__c58 + v__c57*v__c59 - v_d;
+    const double v__c61 = v__c38*v__c58 - v__c17*v__c60 + v__c57*v__c59 - v_d;
     const double v__c62 = v__c37*v__c61;
     const double v__c63 = v__c56*v__c62;
-    const double v__c64 = -v__c63 + v_z;
+    const double v__c64 = v_z - v__c63;
     const double v__c65 = v__c33 - v__c35 + 1.0;
     const double v__c66 = v__c52*v__c65;
     const double v__c67 = v__c38*v__c64;
@@ -460,7 +460,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c110 = -v__c109;
     const double v__c111 = v__c110*v__c38;
     const double v__c112 = v__c111*v__c17;
-    const double v__c113 = -v__c107*v__c7 + v__c110*v__c13*v__c20*v__c38 - v__c112*v__c7 - v__c97;
+    const double v__c113 = v__c110*v__c13*v__c20*v__c38 - v__c107*v__c7 - v__c112*v__c7 - v__c97;
     const double v__c114 = v__c37*v__c38;
     const double v__c115 = 1.0 - v__c114;
     const double v__c116 = v__c115*v__c38;
@@ -512,7 +512,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c162 = -v__c161;
     const double v__c163 = v__c162*v__c38;
     const double v__c164 = v__c139*v__c43 + v__c152*v__c38;
-    const double v__c165 = -v__c133*v__c44 + v__c137*v__c44 + v__c164*v__c53;
+    const double v__c165 = v__c137*v__c44 - v__c133*v__c44 + v__c164*v__c53;
     const double v__c166 = (0.5)*v__c165;
     const double v__c167 = v__c133*v__c52 - v__c137*v__c52 + v__c159*v__c65;
     const double v__c168 = (0.5)*v__c167;
@@ -533,7 +533,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c183 = -v__c129*v__c180;
     const double v__c184 = v__c131*v__c178;
     const double v__c185 = v__c183*v__c32 + v__c184*v__c31;
-    const double v__c186 = -v__c14*v__c83 + v__c15*v__c85 + v__c177*v__c5 - v__c4*v__c81;
+    const double v__c186 = v__c15*v__c85 - v__c14*v__c83 + v__c177*v__c5 - v__c4*v__c81;
     const double v__c187 = v__c134*v__c186;
     const double v__c188 = v__c183*v__c34 + v__c187*v__c31;
     const double v__c189 = v__c185 + v__c188;
@@ -554,7 +554,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c204 = -v__c203;
     const double v__c205 = v__c204*v__c38;
     const double v__c206 = v__c190*v__c43 + v__c198*v__c38;
-    const double v__c207 = -v__c185*v__c44 + v__c188*v__c44 + v__c206*v__c53;
+    const double v__c207 = v__c188*v__c44 - v__c185*v__c44 + v__c206*v__c53;
     const double v__c208 = (0.5)*v__c207;
     const double v__c209 = v__c185*v__c52 - v__c188*v__c52 + v__c201*v__c65;
     const double v__c210 = (0.5)*v__c209;
@@ -573,7 +573,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c223 = -v__c129*v__c220;
     const double v__c224 = v__c131*v__c218;
     const double v__c225 = v__c223*v__c32 + v__c224*v__c31;
-    const double v__c226 = -v__c14*v__c90 + v__c15*v__c92 - v__c216*v__c4 + v__c217*v__c5;
+    const double v__c226 = v__c15*v__c92 - v__c14*v__c90 - v__c216*v__c4 + v__c217*v__c5;
     const double v__c227 = v__c134*v__c226;
     const double v__c228 = v__c223*v__c34 + v__c227*v__c31;
     const double v__c229 = v__c225 + v__c228;
@@ -594,7 +594,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c244 = -v__c243;
     const double v__c245 = v__c244*v__c38;
     const double v__c246 = v__c230*v__c43 + v__c238*v__c38;
-    const double v__c247 = -v__c225*v__c44 + v__c228*v__c44 + v__c246*v__c53;
+    const double v__c247 = v__c228*v__c44 - v__c225*v__c44 + v__c246*v__c53;
     const double v__c248 = (0.5)*v__c247;
     const double v__c249 = v__c225*v__c52 - v__c228*v__c52 + v__c241*v__c65;
     const double v__c250 = (0.5)*v__c249;
@@ -611,17 +611,17 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c261 = v__c260*v__c45;
     const double v__c262 = v__c67*v__c7;
     const double v__c263 = v__c260*v__c60 - v__c44;
-    const double v__c264 = -2.0*v__c21*v__c67 + v__c45*v__c60 + v__c54;
+    const double v__c264 = v__c45*v__c60 - 2.0*v__c21*v__c67 + v__c54;
     const double v__c265 = (0.5)*v__c264;
-    const double v__c266 = -v__c157*v__c262 + v__c160*v__c261 + v__c166*v__c7 - v__c168 - v__c169 + v__c173*v__c263 - v__c174*v__c256 - v__c175 + v__c265*v__c74 + v__c265*v__c78;
-    const double v__c267 = -v__c199*v__c262 + v__c202*v__c261 + v__c208*v__c7 - v__c210 - v__c211 + v__c212*v__c263 - v__c213*v__c256 - v__c214 + v__c265*v__c84 + v__c265*v__c87;
-    const double v__c268 = -v__c239*v__c262 + v__c242*v__c261 + v__c248*v__c7 - v__c250 - v__c251 + v__c252*v__c263 - v__c253*v__c256 - v__c254 + v__c265*v__c91 + v__c265*v__c94;
+    const double v__c266 = v__c160*v__c261 - v__c157*v__c262 + v__c166*v__c7 - v__c168 - v__c169 + v__c173*v__c263 - v__c174*v__c256 - v__c175 + v__c265*v__c74 + v__c265*v__c78;
+    const double v__c267 = v__c202*v__c261 - v__c199*v__c262 + v__c208*v__c7 - v__c210 - v__c211 + v__c212*v__c263 - v__c213*v__c256 - v__c214 + v__c265*v__c84 + v__c265*v__c87;
+    const double v__c268 = v__c242*v__c261 - v__c239*v__c262 + v__c248*v__c7 - v__c250 - v__c251 + v__c252*v__c263 - v__c253*v__c256 - v__c254 + v__c265*v__c91 + v__c265*v__c94;
     const double v__c269 = v__c8 + 6.0;
     const double v__c270 = v__c30 + v__s5;
     const double v__c271 = v__c105*v__c269 + v__c257*v__c270;
     const double v__c272 = v__c113*v__c269 + v__c258*v__c270;
     const double v__c273 = v__c118*v__c269 + v__c259*v__c270;
-    const double v__c274 = -v__c171 + (0.5)*v__c264*v__c4*v__c6;
+    const double v__c274 = (0.5)*v__c264*v__c4*v__c6 - v__c171;
     const double v__c275 = 6.0*v__c274;
     const double v__c276 = v__c29 + v__s0*v__c69;
     const double v__c277 = v__c275 + v__c276 + v__c30*v_q5 + v__s0*v_q5;
@@ -629,18 +629,18 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c279 = v__c215*v__c269 + v__c267*v__c270 + v__c277*v__c88;
     const double v__c280 = v__c255*v__c269 + v__c268*v__c270 + v__c277*v__c95;
     const double v__c281 = v__c8 - 6.0;
-    const double v__c282 = -v__c30 + v__s5;
+    const double v__c282 = v__s5 - v__c30;
     const double v__c283 = v__c105*v__c281 + v__c257*v__c282;
     const double v__c284 = v__c113*v__c281 + v__c258*v__c282;
     const double v__c285 = v__c118*v__c281 + v__c259*v__c282;
-    const double v__c286 = -v__c275 + v__c276 + v__c30*v_q6 + v__s0*v_q6;
+    const double v__c286 = v__c276 - v__c275 + v__c30*v_q6 + v__s0*v_q6;
     const double v__c287 = v__c176*v__c281 + v__c266*v__c282 + v__c286*v__c79;
     const double v__c288 = v__c215*v__c281 + v__c267*v__c282 + v__c286*v__c88;
     const double v__c289 = v__c255*v__c281 + v__c268*v__c282 + v__c286*v__c95;
     const double v__c290 = (0.5)*v__c50;
     const double v__c291 = (0.5)*v__c63;
-    const double v__c292 = -v__c17*v__c291 + v__c290;
-    const double v__c293 = -8.0*v__c292 + v__s6;
+    const double v__c292 = v__c290 - v__c17*v__c291;
+    const double v__c293 = v__s6 - 8.0*v__c292;
     const double v__c294 = v_rb*v__c128*v__c16*v__c32*v__c38 - v__c17*v__c290 - v__c291;
     const double v__c295 = v__s7*v__c17 - 8.0*v__c294;
     const double v__c296 = (0.5)*v__c101;
@@ -672,18 +672,18 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v__f2, double v_x, double
     const double v__c322 = (0.5)*v__c203;
     const double v__c323 = -v__c17*v__c322 - v__c192*v__c291 + v__c321;
     const double v__c324 = -v__c180*v__c317;
-    const double v__c325 = -v__c17*v__c321 + v__c184*v__c314 + v__c186*v__c316 - v__c192*v__c290 + v__c194*v__c312 + v__c315*v__c324 - v__c322;
+    const double v__c325 = v__c184*v__c314 - v__c17*v__c321 + v__c186*v__c316 - v__c192*v__c290 + v__c194*v__c312 + v__c315*v__c324 - v__c322;
     const double v__c326 = v__c192*v__c308 + v__c293*v__c323 + v__c295*v__c325;
     const double v__c327 = (0.5)*v__c240;
     const double v__c328 = (0.5)*v__c243;
     const double v__c329 = -v__c17*v__c328 - v__c232*v__c291 + v__c327;
     const double v__c330 = -v__c220*v__c317;
-    const double v__c331 = -v__c17*v__c327 + v__c224*v__c314 + v__c226*v__c316 - v__c232*v__c290 + v__c234*v__c312 + v__c315*v__c330 - v__c328;
+    const double v__c331 = v__c224*v__c314 - v__c17*v__c327 + v__c226*v__c316 - v__c232*v__c290 + v__c234*v__c312 + v__c315*v__c330 - v__c328;
     const double v__c332 = v__c232*v__c308 + v__c293*v__c329 + v__c295*v__c331;
     const double v__c333 = v__c21*v__c291 + v__c42;
     const double v__c334 = -96.0*v__c333;
     const double v__c335 = v__s12*v__c292 + v__c334 + v__s13;
-    const double v__c336 = -32.0*v__c292 + v__s14;
+    const double v__c336 = v__s14 - 32.0*v__c292;
     const double v__c337 = v__s12*v__c333 + v__c336;
     const double v__c338 = v__s18*v__c17 - 128.0*v__c294;
     const double v__c339 = v__s17*v__c21 + v__c338;
@@ -797,10 +797,10 @@ BF_INLINE void _limit_values(double v__f0, double v__f1, double v__f2, double v_
     const double v__c6 = (v__c4*v__c4) + (v__c5*v__c5);
     const double v__c7 = (1.0/(v__c6*v__c6));
     const double v__c8 = v__c0*v__c1 + v__c2;
-    const double v__c9 = -v__c0*v__c2 + v__c1;
+    const double v__c9 = v__c1 - v__c0*v__c2;
     const double v__c10 = v__c4*v__c9 + v__c5*v__c8;
     const double v__c11 = (v__c10*v__c10)*v__c7;
-    const double v__c12 = -v__c4*v__c8 + v__c5*v__c9;
+    const double v__c12 = v__c5*v__c9 - v__c4*v__c8;
     const double v__c13 = (v__c12*v__c12)*v__c7;
     const double v__c14 = v__c13 + 1.0;
     const double v__c15 = v__c11 + v__c14;
@@ -809,14 +809,14 @@ BF_INLINE void _limit_values(double v__f0, double v__f1, double v__f2, double v_
     const double v__c18 = v__c10*v__c12*v__c7;
     const double v__c19 = v__c17*v__c18;
     const double v__c20 = -3.0*v__c19;
-    const double v__c21 = v__c16*(-v__c11 + v__c14);
+    const double v__c21 = v__c16*(v__c14 - v__c11);
     const double v__c22 = v__c20 + v__s0*v__c21 + v__s1;
     const double v__c23 = v__c16*v__c18;
     const double v__c24 = v__c11 - v__c13 + 1.0;
     const double v__c25 = (1.0/(v__c6));
     const double v__c26 = v__c10*v__c25;
     const double v__c27 = v__c12*v__c25;
-    const double v__c28 = v__c17*(-v__c26 + v__c27)*(v__c26 + v__c27);
+    const double v__c28 = v__c17*(v__c27 - v__c26)*(v__c26 + v__c27);
     const double v__c29 = -0.5*v__c17*v__c24 - v__c28 + (0.5)*v_ra;
     const double v__c30 = v__s3*v__c23 + v__c29;
     const double v__c31 = v__c16*v__c26;
@@ -841,7 +841,7 @@ BF_INLINE void _limit_values(double v__f0, double v__f1, double v__f2, double v_
     out[5] = v_q6;
     out[6] = acos((v__c22*v__c38 - v__c30*v__c33 + v__c37*v__c39)/sqrt((v__c22*v__c22) + (v__c30*v__c30) + (v__c37*v__c37)));
     out[7] = acos((v__c16*v__c32*v__c41 - v__c33*v__c40)/sqrt((v__c40*v__c40) + (v__c41*v__c41)));
-    out[8] = acos((-v__c33*v__c43 + v__c38*v__c42 + v__c39*v__c44)/sqrt((v__c42*v__c42) + (v__c43*v__c43) + (v__c44*v__c44)));
+    out[8] = acos((v__c38*v__c42 - v__c33*v__c43 + v__c39*v__c44)/sqrt((v__c42*v__c42) + (v__c43*v__c43) + (v__c44*v__c44)));
 }
 
 BF_INTERNAL void bf_jacobian_block(int m, double (*restrict P)[BF_BLOCK], double (*restrict F)[BF_BLOCK], double (*restrict Q)[BF_BLOCK], const double *restrict par, int *restrict ST, double *restrict jac_out, int stream, int public);
@@ -918,7 +918,7 @@ BF_INLINE void _fkstep0_g(double v_q1, double v_q2, double v_q3, double v_q4, do
     const double v__c0 = 3.0*v_q4 + 3.0*v_q5 + 3.0*v_q6;
     out[0] = v__c0;
     out[1] = v__s0*v_q4 + v__s0*v_q5 + v__s0*v_q6 + 18.0*v_rb;
-    out[2] = -v__c0 + v__s1;
+    out[2] = v__s1 - v__c0;
 }
 /* _fkstep0_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fkstep0_g_shape[4] = {9, 3, 0, 13};  /* in, out, outputs of the parameters alone, array operations */
@@ -1021,7 +1021,7 @@ BF_INLINE void _fkstep1_v1(double v_q1, double v_q2, double v_q3, double v_q4, d
     const double v__c42 = 9.0*v_q5;
     out[0] = 0.0;
     out[1] = 4.0*v__c0 + 4.0*v__c1 + v__c10*v__c11 + v__c10*v__c15 + v__c11*v__c12 + v__c12*v__c14 + v__c13*v__c14 + v__c13*v__c15 + v__c16*v__c17 + v__c17*v__c18 + v__c19*v__c8 + v__c19*v__c9 + v__c2*v__c3 + v__c2*v__c4 + v__c2*v__c5 + 24.0*v__c20 + 48.0*v__c3*v__c9 + v__c6*v__c7 + v__c7*v__c8 + v__c7*v__c9 + 4.0*v__s2 + 4.0*(v_q5*v_q5*v_q5*v_q5);
-    out[2] = -v__c0*v__c34 + v__s8*v__c0 + v__c1*v__c34 + v__s7*v__c1 + v__c10*v__c26 - 3.0*v__c10*v__c39 + v__s4*v__c10 + v__s8*v__c10*v_q4 + v__c12*v__c30 + v__s5*v__c12 + v__c13*v__c26 + v__s4*v__c13 + v__c16*v__c36 + v__s0*v__c16 + v__c18*v__c36 + v__s0*v__c18 + v__c20*v__c41 + v__s19*v__c20 + v__c21*v_q5 + v__c21*v_q6 + v__c22*v__c37 + v__s21*v__c22 + v__c23*v__c4 + v__c23*v__c6 + v__c24*v__c5 + v__c24*v__c8 + v__c25*v_q4 + v__c25*v_q5 - v__c27*v__c41 + v__s16*v__c27 - v__c28*v__c40 + v__s17*v__c28 + v__c29*v__c40 + v__s18*v__c29 + v__c30*v__c9*v_q4 + v_rb*v__c31*v__c42 + v__s20*v__c31 + v__c32*v__c34 + v__s7*v__c32 - v__c35*v__c41 + v__s16*v__c35 + v__c37*v_g*v_q5 - v__c38*v__c41 + v__s16*v__c38 + v__c39*v__c42*v__c9 + v__s12*v__c4 + v__s10*v__c5 + v__s12*v__c6 + v__s10*v__c8 + v__s3*v_q5 + v__s3*v_q6 + v__s6*v_q4;
+    out[2] = v__s8*v__c0 - v__c0*v__c34 + v__c1*v__c34 + v__s7*v__c1 + v__c10*v__c26 - 3.0*v__c10*v__c39 + v__s4*v__c10 + v__s8*v__c10*v_q4 + v__c12*v__c30 + v__s5*v__c12 + v__c13*v__c26 + v__s4*v__c13 + v__c16*v__c36 + v__s0*v__c16 + v__c18*v__c36 + v__s0*v__c18 + v__c20*v__c41 + v__s19*v__c20 + v__c21*v_q5 + v__c21*v_q6 + v__c22*v__c37 + v__s21*v__c22 + v__c23*v__c4 + v__c23*v__c6 + v__c24*v__c5 + v__c24*v__c8 + v__c25*v_q4 + v__c25*v_q5 - v__c27*v__c41 + v__s16*v__c27 - v__c28*v__c40 + v__s17*v__c28 + v__c29*v__c40 + v__s18*v__c29 + v__c30*v__c9*v_q4 + v_rb*v__c31*v__c42 + v__s20*v__c31 + v__c32*v__c34 + v__s7*v__c32 - v__c35*v__c41 + v__s16*v__c35 + v__c37*v_g*v_q5 - v__c38*v__c41 + v__s16*v__c38 + v__c39*v__c42*v__c9 + v__s12*v__c4 + v__s10*v__c5 + v__s12*v__c6 + v__s10*v__c8 + v__s3*v_q5 + v__s3*v_q6 + v__s6*v_q4;
 }
 /* _fkstep1_v1 on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fkstep1_v1_shape[4] = {10, 3, 1, 195};  /* in, out, outputs of the parameters alone, array operations */
@@ -1619,7 +1619,7 @@ BF_INLINE void _fkchart2_step2_g(double v_q1, double v_q2, double v_q3, double v
     const double v__c28 = v__s17*v__c6;
     out[0] = 0.0;
     out[1] = 3.0*v_rb*(v__c0 + v__c1 + v__c10 + v__c11 - v__c12*v__c8 - 2.0*v__c13 - 2.0*v__c14 + v__s2*v__c2 + v__c3*v_q5 + v__c3*v_q6 - v__c4*v__c8*v_q6 + v__s0*v__c4 + v__s1*v__c5 + v__s1*v__c6 + v__c7*v__c8 + v__c8*v__c9);
-    out[2] = -v__c0*v__c18 + v__s4*v__c0 + v__c1*v__c18 + v__s4*v__c1 - v__c10*v__c26 + v__s4*v__c10 + v__c11*v__c26 + v__s4*v__c11 + v__s12*v__c12*v_q5 + v__s12*v__c13 + v__s12*v__c14 + v__c15*v_q5 + v__c15*v_q6 + v__c16*v_q5 + v__c16*v_q6 + v__c17*v__c27*v__c6 + v__c17*v__c28 + v__s8*v__c17*v_q6 + v__s9*v__c17 + v__c19*v__c27 + v__s10*v__c19 + 8.0*v__c19*v_q4 - 12.0*v__c2*v__c24 + v__s12*v__c2*v__c4 + v__s11*v__c2 + v__s5*v__c2*v_v1 + v__c20*v__c7 + v__c20*v__c9 + v__c21*v__c22 + v__c21*v__c7 + v__s18*v__c23*v_q4 + v__s5*v__c23 + v__s18*v__c24*v_q5 + v__s8*v__c24 - v__c25*v_q4 + v__c25*v_q6 - v__c26*v__c7*v_q5 + v__c28*v_q5*v_v1 + v__s6*v__c4 + v__s7*v__c5 + v__s7*v__c6 - 8.0*v__c7*v_q6*v_v1;
+    out[2] = v__s4*v__c0 - v__c0*v__c18 + v__c1*v__c18 + v__s4*v__c1 - v__c10*v__c26 + v__s4*v__c10 + v__c11*v__c26 + v__s4*v__c11 + v__s12*v__c12*v_q5 + v__s12*v__c13 + v__s12*v__c14 + v__c15*v_q5 + v__c15*v_q6 + v__c16*v_q5 + v__c16*v_q6 + v__c17*v__c27*v__c6 + v__c17*v__c28 + v__s8*v__c17*v_q6 + v__s9*v__c17 + v__c19*v__c27 + v__s10*v__c19 + 8.0*v__c19*v_q4 - 12.0*v__c2*v__c24 + v__s12*v__c2*v__c4 + v__s11*v__c2 + v__s5*v__c2*v_v1 + v__c20*v__c7 + v__c20*v__c9 + v__c21*v__c22 + v__c21*v__c7 + v__s18*v__c23*v_q4 + v__s5*v__c23 + v__s18*v__c24*v_q5 + v__s8*v__c24 - v__c25*v_q4 + v__c25*v_q6 - v__c26*v__c7*v_q5 + v__c28*v_q5*v_v1 + v__s6*v__c4 + v__s7*v__c5 + v__s7*v__c6 - 8.0*v__c7*v_q6*v_v1;
 }
 /* _fkchart2_step2_g on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fkchart2_step2_g_shape[4] = {11, 3, 1, 156};  /* in, out, outputs of the parameters alone, array operations */
@@ -1645,7 +1645,7 @@ BF_INLINE void _rps_coefficients(double v_q1, double v_q2, double v_q3, double v
     const double v__c4 = 3.0*(v_ra*v_ra);
     const double v__c5 = v__c3 + v__c4 + (v_q2*v_q2);
     const double v__c6 = v__c2 + v__c5;
-    const double v__c7 = -v__c1 + v__c6;
+    const double v__c7 = v__c6 - v__c1;
     const double v__c8 = 6.0*v_ra;
     const double v__c9 = -v__c8*v_q2;
     const double v__c10 = v__c1 + v__c6;
@@ -1654,13 +1654,13 @@ BF_INLINE void _rps_coefficients(double v_q1, double v_q2, double v_q3, double v
     const double v__c13 = 2.0*v__c12;
     const double v__c14 = (v_q3*v_q3);
     const double v__c15 = v__c14 + v__c5;
-    const double v__c16 = -v__c13 + v__c15;
+    const double v__c16 = v__c15 - v__c13;
     const double v__c17 = v__c8*v_q3;
     const double v__c18 = v__c13 + v__c15;
     const double v__c19 = v_q1*v_q3;
     const double v__c20 = 2.0*v__c19;
     const double v__c21 = v__c14 + v__c2 + v__c3 + v__c4;
-    const double v__c22 = -v__c20 + v__c21;
+    const double v__c22 = v__c21 - v__c20;
     const double v__c23 = v__c20 + v__c21;
     out[0] = v__c7;
     out[1] = v__c9;
@@ -1749,7 +1749,7 @@ BF_INLINE void _rps_equations(double v_u1, double v_u2, double v_u3, double v_q1
     const double v__c39 = v__c16*v_q3;
     const double v__c40 = v__c39*v_u3;
     const double v__c41 = v__c31*v__c33;
-    const double v__c42 = -v__c10*v__c31 + v__c14*v__c31 + v__c33 + v__c40 + v__c41;
+    const double v__c42 = v__c14*v__c31 - v__c10*v__c31 + v__c33 + v__c40 + v__c41;
     const double v__c43 = v__c0*v__c31;
     const double v__c44 = v__c33*v__c4;
     const double v__c45 = v_q1*v_q3;
@@ -1770,7 +1770,7 @@ BF_INLINE void _rps_equations(double v_u1, double v_u2, double v_u3, double v_q1
     const double v__c60 = 6.0*v_u2;
     const double v__c61 = v__c60*v__c9;
     const double v__c62 = v__c13*v__c60;
-    const double v__c63 = -v__c17 + v__c3*v__c59 - v__c61 + v__c62;
+    const double v__c63 = v__c3*v__c59 - v__c17 - v__c61 + v__c62;
     const double v__c64 = v__c37*v_u2;
     const double v__c65 = 12.0*v_u2*v_u3;
     const double v__c66 = v_q3*v_ra;
@@ -1784,13 +1784,13 @@ BF_INLINE void _rps_equations(double v_u1, double v_u2, double v_u3, double v_q1
     const double v__c74 = v__c49 + v__c73;
     out[0] = -v__c1*v__c11 - v__c1*v__c12 + v__c1*v__c15 + v__c1*v__c24 + v__c1*v__c5 + v__c1*v__c7 + v__c1*v__c8 + v__c12 - v__c18*v__c4 + v__c2 - v__c21*v_u1 + v__c29 + v__c30 + v__c5 - v__c7;
     out[1] = v__c1*v__c40 - v__c18*v__c31 + v__c26*v__c31 - v__c27*v__c31 + v__c28*v__c31 + v__c29 + v__c31*v__c34 + v__c31*v__c35 - v__c31*v__c36 + v__c32 + v__c34 - v__c35 + v__c36 - v__c38*v_u2 + v__c42;
-    out[2] = -v__c11*v__c31 + v__c14 + v__c15*v__c31 + v__c24*v__c31 + v__c25 + v__c30 + v__c31*v__c46 - v__c31*v__c47 + v__c31*v__c8 + v__c4*v__c40 + v__c4*v__c41 + v__c42 + v__c43 + v__c44 - v__c46 + v__c47 + v__c49*v_u3;
+    out[2] = v__c14 - v__c11*v__c31 + v__c15*v__c31 + v__c24*v__c31 + v__c25 + v__c30 + v__c31*v__c46 - v__c31*v__c47 + v__c31*v__c8 + v__c4*v__c40 + v__c4*v__c41 + v__c42 + v__c43 + v__c44 - v__c46 + v__c47 + v__c49*v_u3;
     out[3] = -v__c1*v__c51 - v__c1*v__c52 + v__c1*v__c53 + v__c1*v__c54 + v__c2*v__c50 - v__c21 + v__c26*v__c50 + v__c3*v__c50 + v__c52 - v__c56*v__c57 + v__c58;
     out[4] = v__c0*v__c59 - v__c17*v__c4 - v__c21*v__c4 + v__c21 + v__c23*v__c56 - v__c4*v__c61 + v__c4*v__c62 + v__c5*v__c59 - v__c52 + v__c59*v__c8 + v__c63;
     out[5] = 0.0;
     out[6] = 0.0;
     out[7] = -v__c17*v__c31 - v__c31*v__c61 + v__c31*v__c62 - v__c31*v__c64 + v__c32*v__c59 + v__c33*v__c59 - v__c38 + v__c41*v__c59 + v__c63 + v__c64 + v__c65*v__c66;
-    out[8] = -v__c1*v__c38 + v__c1*v__c39 - v__c1*v__c69 + v__c1*v__c70 + v__c26*v__c67 + v__c3*v__c67 + v__c34*v__c67 + v__c38 - v__c57*v__c65 - v__c64 + v__c71;
+    out[8] = v__c1*v__c39 - v__c1*v__c38 - v__c1*v__c69 + v__c1*v__c70 + v__c26*v__c67 + v__c3*v__c67 + v__c34*v__c67 + v__c38 - v__c57*v__c65 - v__c64 + v__c71;
     out[9] = -v__c31*v__c49 - v__c31*v__c51 + v__c31*v__c53 + v__c31*v__c54 + v__c33*v__c50 + v__c41*v__c50 + v__c43*v__c50 + v__c58 + v__c66*v__c72 + v__c74;
     out[10] = 0.0;
     out[11] = v__c0*v__c67 + v__c23*v__c72 + v__c39*v__c4 - v__c4*v__c69 + v__c4*v__c70 - v__c4*v__c73 + v__c44*v__c67 + v__c67*v__c8 + v__c71 + v__c74;
@@ -1825,13 +1825,13 @@ BF_INLINE void _rps_centres(double v_u1, double v_u2, double v_u3, double v_q1, 
     const double v__c10 = 24.0*v_q3*v_u3;
     out[0] = v__c1*(v__c0*v__c4 + v__c2*v__c5 + v__c4);
     out[1] = v__c1*(-v__c0*v__c3 - v__c3 - v__c5);
-    out[2] = (-v__c0*v_q1 + v_q1)/(v__c0 + 1.0);
+    out[2] = (v_q1 - v__c0*v_q1)/(v__c0 + 1.0);
     out[3] = 0.0;
     out[4] = v__c7*(v__c6*v_ra - 2.0*v_q2*v_u2 + v_ra);
-    out[5] = v__c7*(-v__c6*v_q2 + v_q2);
+    out[5] = v__c7*(v_q2 - v__c6*v_q2);
     out[6] = v__c9*(-v__c10*v__c2 - v__c4*v__c8 - v__c4);
     out[7] = v__c9*(-v__c10 - v__c3*v__c8 - v__c3);
-    out[8] = (-v__c8*v_q3 + v_q3)/(v__c8 + 1.0);
+    out[8] = (v_q3 - v__c8*v_q3)/(v__c8 + 1.0);
 }
 /* _rps_centres on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__rps_centres_shape[4] = {12, 9, 1, 53};  /* in, out, outputs of the parameters alone, array operations */
@@ -1880,11 +1880,11 @@ void bonered_rows__rps_platform(long n, const double *const *in, const long *ste
 /* Study coordinates (chart x0 = 1) of the platform from R (row-major) and t. */
 BF_INLINE void _rps_study(double v_r0, double v_r1, double v_r2, double v_r3, double v_r4, double v_r5, double v_r6, double v_r7, double v_r8, double v_t0, double v_t1, double v_t2, double *restrict out)
 {
-    const double v__c0 = -v_r5 + v_r7;
+    const double v__c0 = v_r7 - v_r5;
     const double v__c1 = v_r0 + v_r4 + v_r8 + 1.0;
     const double v__c2 = (1.0/(v__c1));
     const double v__c3 = v_r2 - v_r6;
-    const double v__c4 = -v_r1 + v_r3;
+    const double v__c4 = v_r3 - v_r1;
     const double v__c5 = (0.5)*v_t0;
     const double v__c6 = (0.5)*v__c4;
     const double v__c7 = (0.5)*v_t2;
@@ -1892,7 +1892,7 @@ BF_INLINE void _rps_study(double v_r0, double v_r1, double v_r2, double v_r3, do
     out[1] = v__c2*v__c3;
     out[2] = v__c2*v__c4;
     out[3] = v__c2*(v__c0*v__c5 + (0.5)*v__c3*v_t1 + v__c6*v_t2);
-    out[4] = v__c2*(-v__c1*v__c5 + (0.5)*v__c3*v_t2 - v__c6*v_t1);
+    out[4] = v__c2*((0.5)*v__c3*v_t2 - v__c1*v__c5 - v__c6*v_t1);
     out[5] = v__c2*(-v__c0*v__c7 - 0.5*v__c1*v_t1 + (0.5)*v__c4*v_t0);
     out[6] = v__c2*((0.5)*v__c0*v_t1 - v__c1*v__c7 - v__c3*v__c5);
 }
@@ -1953,7 +1953,7 @@ BF_INLINE void _fk_newton(double v_g, double v_v1, double v_v2, double v_q1, dou
     out[12] = v__c15 + v__s4;
     out[13] = v__c15*v_q6 + v__c16 - v__c8 + v__s1*v_q6;
     out[14] = v__c14 - 6.0;
-    out[15] = -v__c15 + v__s4;
+    out[15] = v__s4 - v__c15;
 }
 /* _fk_newton on n rows (bonered_alg.runtime.compiled.FastPath.rows) */
 const int bonered_rows__fk_newton_shape[4] = {12, 16, 5, 61};  /* in, out, outputs of the parameters alone, array operations */

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3a4c94e88985eeec33d855ac422b08386383f6260408c32a06e4049a721d8b97
+ * Derivation hash: 3a52d0946b3be64171a3e011c1281d7b99e657c5fc70f85e5bd07792df9c2994
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3a4c94e88985eeec33d855ac422b08386383f6260408c32a06e4049a721d8b97";
+const char bonered_derivation_hash[] = "3a52d0946b3be64171a3e011c1281d7b99e657c5fc70f85e5bd07792df9c2994";
 int bonered_abi(void) { return 3; }
 #endif
 
@@ -51,26 +51,20 @@ BF_INLINE void _step2_b1(double v_w1, double v_w2, double v_d1, double v_d2, dou
     const double v__k0 = (v_lbc1*v_lbc1);
     const double v__k1 = (v_lab1*v_lab1);
     const double v__k2 = (v_loa1*v_loa1);
-    const double v__k3 = 2.0*v_lab1*v_loa1;
-    const double v__k4 = -v__k3;
-    const double v__k5 = -v__k0 + v__k1 + v__k2;
-    const double v__k6 = 4.0*v_lab1;
     const double v__s0 = v__k0;
     const double v__s1 = -v__k1;
     const double v__s2 = -v__k2;
-    const double v__s3 = v__k4;
-    const double v__s4 = -v__k3 - v__k5;
-    const double v__s5 = v__k6 + 4.0*v_loa1;
-    const double v__s6 = v__k3;
-    const double v__s7 = -v__k4 - v__k5;
-    const double v__s8 = -v__k6 + 4.0*v_loa1;
-    const double v__c0 = (v_w2*v_w2);
-    const double v__c1 = v_d1*v_w2;
-    const double v__c2 = (v_d1*v_d1);
-    const double v__c3 = -v__c0*v__c2 - v__c2;
-    out[0] = v__s4*v__c0 + v__s5*v__c1 + v__c3 + v__s4;
-    out[1] = -4.0*v_lab1*v_d1*(v_w2 - 1.0)*(v_w2 + 1.0);
-    out[2] = v__s7*v__c0 + v__s8*v__c1 + v__c3 + v__s7;
+    const double v__s3 = v__k0 - v__k1 - v__k2;
+    const double v__s4 = 2.0*v_lab1*v_loa1;
+    const double v__c0 = (v_d1*v_d1);
+    const double v__c1 = (v_w2*v_w2);
+    const double v__c2 = 4.0*v_d1;
+    const double v__c3 = v__c2*v_w2;
+    const double v__c4 = -v__c0*v__c1 - v__c0 + v__s3*v__c1 + v_loa1*v__c3 + v__s3;
+    const double v__c5 = v__s4*v__c1 - v_lab1*v__c3 + v__s4;
+    out[0] = v__c4 - v__c5;
+    out[1] = -v_lab1*v__c2*(v_w2 - 1.0)*(v_w2 + 1.0);
+    out[2] = v__c4 + v__c5;
 }
 
 /* Coefficients (A, B, C) of the generator solved for b2 (from shaft/2). */
@@ -79,37 +73,27 @@ BF_INLINE void _step3_b2(double v_w1, double v_w2, double v_d1, double v_d2, dou
     const double v__k0 = (v_lab2*v_lab2);
     const double v__k1 = (v_loa2*v_loa2);
     const double v__k2 = -(v_lbc2*v_lbc2);
-    const double v__k3 = 2.0*v_lab2*v_loa2;
-    const double v__k4 = v__k0 + v__k1 + v__k2;
-    const double v__k5 = 4.0*v_lab2;
-    const double v__k6 = 4.0*v_loa2;
-    const double v__k7 = v__k5 + v__k6;
-    const double v__k8 = -v__k3;
-    const double v__k9 = v__k5 - v__k6;
     const double v__s0 = v__k0;
     const double v__s1 = v__k1;
     const double v__s2 = v__k2;
-    const double v__s3 = v__k3;
-    const double v__s4 = v__k3 + v__k4;
-    const double v__s5 = v__k7;
-    const double v__s6 = -v__k7;
-    const double v__s7 = v__k8;
-    const double v__s8 = v__k4 + v__k8;
-    const double v__s9 = -v__k9;
-    const double v__s10 = v__k9;
-    const double v__c0 = (v_w1*v_w1);
-    const double v__c1 = v__s4*v__c0;
-    const double v__c2 = (v_w2*v_w2);
-    const double v__c3 = v_d2*v_w1;
-    const double v__c4 = v__c2*v__c3;
-    const double v__c5 = (v_d2*v_d2);
-    const double v__c6 = v__c0*v__c5;
-    const double v__c7 = v__c2*v__c5 + v__c2*v__c6 + v__c5 + v__c6;
-    const double v__c8 = 2.0*v_a2*v_w2;
-    const double v__c9 = v__c0*v__c2;
-    out[0] = v__c1*v__c2 + v__c1 + v__s4*v__c2 + v__s5*v__c3 + v__s6*v__c4 + v__c7 + v__s4;
-    out[1] = 4.0*v_lab2*v_d2*(v__c0*v__c8 - v__c0 - v__c2 + v__c8 + v__c9 + 1.0);
-    out[2] = v__s8*v__c0 + v__s8*v__c2 + v__s9*v__c3 + v__s10*v__c4 + v__c7 + v__s8*v__c9 + v__s8;
+    const double v__s3 = v__k0 + v__k1 + v__k2;
+    const double v__s4 = -2.0*v_lab2*v_loa2;
+    const double v__c0 = (v_d2*v_d2);
+    const double v__c1 = (v_w1*v_w1);
+    const double v__c2 = v__s3*v__c1;
+    const double v__c3 = (v_w2*v_w2);
+    const double v__c4 = 4.0*v_d2;
+    const double v__c5 = v__c4*v_w1;
+    const double v__c6 = v_loa2*v__c5;
+    const double v__c7 = v__c0*v__c1;
+    const double v__c8 = v__c0*v__c3 + v__c0 + v__c2*v__c3 + v__c2 - v__c3*v__c6 + v__c3*v__c7 + v__s3*v__c3 + v__c6 + v__c7 + v__s3;
+    const double v__c9 = v__s4*v__c1;
+    const double v__c10 = v_lab2*v__c5;
+    const double v__c11 = v__c10*v__c3 - v__c10 + v__c3*v__c9 + v__s4*v__c3 + v__c9 + v__s4;
+    const double v__c12 = 2.0*v_a2*v_w2;
+    out[0] = v__c8 - v__c11;
+    out[1] = v_lab2*v__c4*(v__c1*v__c12 + v__c1*v__c3 - v__c1 + v__c12 - v__c3 + 1.0);
+    out[2] = v__c11 + v__c8;
 }
 
 /* Pivots dG_k/dq_k, row scales, then dq/dX row-major (forward substitution: Ji is triangular in the solve order). */
@@ -132,7 +116,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     const double v__k14 = 8.0*v_loa2;
     const double v__k15 = v__k13 + v__k14;
     const double v__k16 = 4.0*v_loa1;
-    const double v__k17 = -v__k16 + v__k3;
+    const double v__k17 = v__k3 - v__k16;
     const double v__k18 = v__k16 + v__k3;
     const double v__k19 = -v__k11;
     const double v__k20 = 4.0*v_loa2;
@@ -173,7 +157,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     const double v__c5 = 2.0*v_a2;
     const double v__c6 = v__c0*v__c5;
     const double v__c7 = v__c3*v__c6 - v__c3;
-    const double v__c8 = -v__c1 + v__c4 + v__c6 + v__c7 + 1.0;
+    const double v__c8 = v__c4 - v__c1 + v__c6 + v__c7 + 1.0;
     const double v__c9 = v__s4*v_b1;
     const double v__c10 = 4.0*v_lab1;
     const double v__c11 = v__c10*v_d;
@@ -183,7 +167,7 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     const double v__c15 = -v__c1*v__c11 - v__c1*v__c13 + v__c1*v__c9 + v__c11 - v__c13 + v__s5*v__c14 + v__c9;
     const double v__c16 = v__s10*v_b2;
     const double v__c17 = v_p*v_gamma;
-    const double v__c18 = -v__c17 + v_d;
+    const double v__c18 = v_d - v__c17;
     const double v__c19 = 4.0*v_lab2;
     const double v__c20 = v__c18*v__c19;
     const double v__c21 = 2.0*(v__c18*v__c18);
@@ -266,8 +250,8 @@ BF_INLINE void _jac(double v__f0, double v__f1, double v_theta1, double v_theta2
     out[17] = -v__c46*v__c78;
     out[18] = v__c78*(v__s25*v__c0 + v__c43 + v__s26*v__c45);
     out[19] = 0.0;
-    out[20] = v__c79*(-v__c73 + v__c76*v__c80);
-    out[21] = v__c79*(-v__c60 + v__c77*v__c80);
+    out[20] = v__c79*(v__c76*v__c80 - v__c73);
+    out[21] = v__c79*(v__c77*v__c80 - v__c60);
     out[22] = v__c79*(v__s22*v__c1*v__c2*v__c48 + v__s20*v__c1*v__c2 + v__s23*v__c2*v__c48 + v__s21*v__c2 - v__c67);
     out[23] = v__c74*v__c79;
 }
@@ -424,7 +408,7 @@ BF_INLINE void _fkstep2_d1(double v_a1, double v_a2, double v_b1, double v_b2, d
     const double v__s2 = v__k3 - v__k4;
     const double v__s3 = -v__k5;
     const double v__s4 = v__k5;
-    const double v__s5 = -v__k6 + 16.0*v_loa1;
+    const double v__s5 = 16.0*v_loa1 - v__k6;
     const double v__s6 = -v__k3 - v__k4;
     const double v__s7 = v__k6 + 16.0*v_loa1;
     const double v__s8 = v__k7;
@@ -480,7 +464,7 @@ BF_INLINE void _fkstep2_d1(double v_a1, double v_a2, double v_b1, double v_b2, d
     const double v__c29 = v__s26*v__c0;
     const double v__c30 = v__c2*v__c29;
     const double v__c31 = v__c29*v__c3;
-    out[0] = (v__c0 + 1.0)*(-v__c1 + v__c5)*(v__c1 + v__c5);
+    out[0] = (v__c0 + 1.0)*(v__c5 - v__c1)*(v__c1 + v__c5);
     out[1] = v__s7*v__c0*v__c22 + v__c10*v__c15 + v__c10*v__c21 + v__s1*v__c10 + v__c12*v__c9 + v__c12 + v__c13*v__c20 + v__c13*v_a2 - v__c15*v__c20 + v__c15*v__c8 - v__c15*v_a2 - v__c16*v__c19 - v__c16 - v__c17*v__c19 - v__c17 + v__c18*v__c9 + v__c18 - v__c19*v__c7 + v__s0*v__c20 + v__c21*v__c8 + v__s5*v__c22 + v__c23*v__c9 + v__c23 + 16.0*v__c4*v__c6 - v__c7 + v__s1*v__c8 + v__s0*v_a2;
     out[2] = v__s28*v__c0*v__c4 + v__c19*v__c24 + v__c19*v__c25 + v__c19*v__c26 + v__c19*v__c28 + v__c19*v__c30 + v__s23*v__c19 + v__c24 + v__c25 + v__c26 + v__c27*v__c9 + v__c27 + v__c28 + v__c30 + v__c31*v__c9 + v__c31 + v__s27*v__c4 + v__s23;
 }
@@ -525,7 +509,7 @@ BF_INLINE void _fkstep3_d2(double v_a1, double v_a2, double v_b1, double v_b2, d
     const double v__k21 = v__k5 + v__k6 + v__k8;
     const double v__k22 = v__k10 + v__k11 + v__k9;
     const double v__k23 = v__k12 + v__k13 - 12.0*v__k7;
-    const double v__s0 = -v__k0 + 4.0*v_loa2;
+    const double v__s0 = 4.0*v_loa2 - v__k0;
     const double v__s1 = v__k3;
     const double v__s2 = v__k0 + 4.0*v_loa2;
     const double v__s3 = -v__k3;
@@ -594,7 +578,7 @@ BF_INLINE void _fkstep3_d2(double v_a1, double v_a2, double v_b1, double v_b2, d
     const double v__c39 = v__s24*v__c0;
     const double v__c40 = v__c3*v__c39;
     const double v__c41 = v__c39*v__c4;
-    out[0] = (v__c0 + 1.0)*(-v__c2 + v__c6)*(v__c2 + v__c6);
+    out[0] = (v__c0 + 1.0)*(v__c6 - v__c2)*(v__c2 + v__c6);
     out[1] = v__c1*v__c12 + v__c1*v__c28 + v__c10*v__c14 + v__c10*v__c31 + v__c11*v__c13 + v__c11 + v__c12*v__c29 + v__c13*v__c16 + v__c13*v__c21 + v__c13*v__c26 + v__c13*v__c7 - v__c13*v__c9 + v__c14*v_a1 + v__c16 + v__c19*v__c20 + v__c19 + v__c20*v__c27 - v__c21 + v__c22*v__c24 + v__c22*v__c25 - v__c23*v__c32 + v__c24*v__c33 + v__c25*v__c33 + v__c26 + v__c27 + v__c28*v__c29 + v__c31*v_a1 - v__c32*v_a2 + v__c7 + v__c9;
     out[2] = v__s26*v__c0*v__c5 + v__c13*v__c34 + v__c13*v__c35 + v__c13*v__c37 + v__c13*v__c38 + v__c13*v__c40 + v__s21*v__c13 + v__c20*v__c36 + v__c20*v__c41 + v__c34 + v__c35 + v__c36 + v__c37 + v__c38 + v__c40 + v__c41 + v__s25*v__c5 + v__s21;
 }
@@ -635,7 +619,7 @@ BF_INLINE void _fk_newton(double v_w1, double v_w2, double v_d1, double v_d2, do
     const double v__k17 = v__k14 + v__k16;
     const double v__k18 = v__k13 + v__k16;
     const double v__k19 = 2.0*v_lab2;
-    const double v__k20 = -v__k12 + v__k19;
+    const double v__k20 = v__k19 - v__k12;
     const double v__k21 = v__k12 + v__k19;
     const double v__k22 = 2.0*v__k10;
     const double v__k23 = 2.0*v__k11;
@@ -647,7 +631,7 @@ BF_INLINE void _fk_newton(double v_w1, double v_w2, double v_d1, double v_d2, do
     const double v__k29 = v__k22 + v__k23 + v__k25;
     const double v__k30 = v__k28 + v__k29;
     const double v__k31 = 4.0*v_lab2;
-    const double v__k32 = -v__k26 + v__k31;
+    const double v__k32 = v__k31 - v__k26;
     const double v__k33 = v__k27 + v__k29;
     const double v__k34 = v__k26 + v__k31;
     const double v__k35 = 5.0*v__k11;
@@ -710,7 +694,7 @@ BF_INLINE void _fk_newton(double v_w1, double v_w2, double v_d1, double v_d2, do
     const double v__k92 = v__k64 + v__k91;
     const double v__k93 = v__k80 + v__k90;
     const double v__k94 = 8.0*v_lab2;
-    const double v__k95 = -v__k62 + v__k94;
+    const double v__k95 = v__k94 - v__k62;
     const double v__k96 = v__k62 + v__k94;
     const double v__k97 = -v__k50;
     const double v__k98 = (v_lab2*v_lab2*v_lab2*v_lab2);
@@ -1019,7 +1003,7 @@ BF_INLINE void _fk_newton(double v_w1, double v_w2, double v_d1, double v_d2, do
     const double v__s217 = v__k91;
     const double v__s218 = 12.0*v__k10 - v__k45 - v__k87;
     const double v__s219 = v__k163;
-    const double v__s220 = -v__k65 + 6.0*v_loa2;
+    const double v__s220 = 6.0*v_loa2 - v__k65;
     const double v__s221 = v__k65 + 6.0*v_loa2;
     const double v__s222 = -v__k80 - v__k87;
     const double v__s223 = v__k118 + 12.0*v_loa2;
@@ -1311,7 +1295,7 @@ BF_INLINE void _fk_newton(double v_w1, double v_w2, double v_d1, double v_d2, do
     const double v__c285 = 12.0*v__c25;
     const double v__c286 = v__s185*v__c168;
     const double v__c287 = v__s221*v_w1;
-    out[0] = -v_a1 + v_w1;
+    out[0] = v_w1 - v_a1;
     out[1] = v__c0*v__c2 + v__c0 + v__c1*v_w2 + v__c10*v__c9 + v__c2*v__c4 + v__c2*v__c7 + v__c2*v__c8 + v__s5*v__c2 + v__c4 - v__c7 + v__c8 + v__s5;
     out[2] = v__c12 + v__c14*v__c2 - v__c14 - v__c15 - v__c16 + v__c17 + v_a2 - v_w2;
     out[3] = v__c15*v__c24 + v__s14*v__c15 + v__c18*v__c19 + v__c20*v_w1 - v__c22 + v__c24*v_a2 - v__c28 + v__c31*v_w1 + v__c33*v__c34 + v__c36*v_w1 + v__c38*v_w1 - v__c39 - v__c40 - v__c42 + v__c43*v__c45 + v__c45*v__c46 - v__c48 + v__s14*v_a2;

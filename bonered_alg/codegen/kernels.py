@@ -94,6 +94,34 @@ class _ScalarsFirst:
         out = _print_mul_scalars_first(self, expr, self.scalars) if self.scalars else None
         return super()._print_Mul(expr) if out is None else out
 
+    def _print_Add(self, expr, order=None):  # noqa: N802
+        return _print_add_without_leading_negation(self, expr, order)
+
+
+def _print_add_without_leading_negation(printer, expr, order=None) -> str:
+    """A sum as sympy's printers write it (``StrPrinter._print_Add``, terms in the same
+    order, evaluated left to right), except that a negative first term followed by a
+    positive one is written after it: ``-_c0 + x + y`` as ``x - _c0 + y``.  The numbers
+    are the same (``-a + b`` and ``b - a`` round alike: IEEE negation is exact and
+    addition commutes), and numpy saves the pass that negates the array ``_c0``."""
+    prec = precedence(expr)
+    parts = []
+    for term in printer._as_ordered_terms(expr, order=order):
+        t = printer._print(term)
+        sign = "+"
+        if t.startswith("-") and not term.is_Add:
+            sign, t = "-", t[1:]
+        if precedence(term) < prec or term.is_Add:
+            t = f"({t})"
+        parts.append((sign, t))
+    if len(parts) > 1 and parts[0][0] == "-" and parts[1][0] == "+":
+        parts[0], parts[1] = parts[1], parts[0]
+    first_sign, first = parts[0]
+    out = ("-" if first_sign == "-" else "") + first
+    for sign, t in parts[1:]:
+        out += f" {sign} {t}"
+    return out
+
 
 class _Printer(_ScalarsFirst, NumPyPrinter):
     """NumPyPrinter writing ``numpy.<fn>`` calls and exact rationals as float literals;
@@ -344,6 +372,7 @@ def kernel(name: str, args: Sequence[sp.Symbol], outputs: Sequence[sp.Expr], doc
     subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_c"), order="canonical")
     if program:
         subs, reduced = _scheduled([sym for sym, _ in program], subs, reduced)
+    subs, reduced = _scaled_temporaries_inlined(subs, reduced, scalar_names)
     subs = first + list(subs)
     source, ops = _numpy_function(name, args, subs, reduced, doc, scalar_names)
     c_source = _c_function(name, args, subs, reduced, doc, scalar_names) if c else ""
@@ -439,6 +468,71 @@ def _scheduled(named: Sequence[sp.Symbol], subs: Sequence[tuple[sp.Symbol, sp.Ex
     renamed = {s: sp.Symbol(f"_c{k}") for k, s in enumerate(order)}
     return ([(renamed[s], sp.sympify(defs[s]).xreplace(renamed)) for s in order],
             [sp.sympify(e).xreplace(renamed) for e in outputs])
+
+
+def _power_of_two(c: sp.Expr) -> bool:
+    """``c`` a rational number +-2^k (k any integer): multiplying by it is exact."""
+    if not c.is_Rational or c == 0:
+        return False
+    p, q = abs(int(c.p)), int(c.q)
+    return p & (p - 1) == 0 and q & (q - 1) == 0
+
+
+def _scaled_temporaries_inlined(subs, reduced, scalars: frozenset):
+    """The CSE program ``(subs, reduced)`` with each temporary ``_c = 2^k * X`` (X an
+    array) put back into its readers where every reader multiplies it by a scalar (a
+    parameter or a hoisted ``_s``): CSE shares ``2.0*x`` between ``lOA*2.0*x`` and
+    ``lOB*2.0*x``, which costs an array operation more than the two products printed
+    scalars first (``2.0*lOA*x``: one each).  Each product is the same number (scaling by
+    a power of two is exact, so ``lOA*(2x)`` and ``(2 lOA)*x`` round alike; a product with
+    another array factor, or a scalar divided by, keeps the temporary), but a sum that
+    reads it may then order its terms differently, and round differently in the last
+    bits.  The temporaries are then numbered in order again."""
+    def scalar(f: sp.Expr) -> bool:
+        return not f.is_Number and bool(f.free_symbols) and {
+            v.name for v in f.free_symbols} <= scalars
+
+    candidates = {sym: e for sym, e in subs
+                  if e.is_Mul and len(e.args) == 2 and _power_of_two(e.args[0])
+                  and (e.args[1].is_Symbol or e.args[1].is_Pow) and not scalar(e.args[1])}
+    if not candidates:
+        return subs, reduced
+    keep: set[sp.Symbol] = set()
+    seen: set = set()
+
+    def visit(e: sp.Expr) -> None:
+        if e.is_Atom or e in seen:
+            return
+        seen.add(e)
+        # a product of scalars and the temporary alone, no scalar divided by (another
+        # array factor would be multiplied in another order once the factors are printed
+        # scalars first, and a division by a scalar is printed after the array)
+        scaled = False
+        if e.is_Mul:
+            arrays = [a for a in e.args if not a.is_Number and not scalar(a)]
+            others = [a for a in e.args if a not in arrays]
+            scaled = (len(arrays) == 1 and any(not a.is_Number for a in others)
+                      and not any(a.is_Pow and a.exp.is_negative for a in others))
+        for a in e.args:
+            if a in candidates:
+                if not scaled:
+                    keep.add(a)
+            else:
+                visit(a)
+
+    for e in [e for _, e in subs] + list(reduced):
+        if e in candidates:  # a candidate that is a whole value (an alias) stays
+            keep.add(e)
+        visit(e)
+    inline = {s: e for s, e in candidates.items() if s not in keep}
+    if not inline:
+        return subs, reduced
+    subs = [(s, e.xreplace(inline)) for s, e in subs if s not in inline]
+    reduced = [sp.sympify(e).xreplace(inline) for e in reduced]
+    temps = [s for s, _ in subs if s.name.startswith("_c")]
+    renamed = {s: sp.Symbol(f"_c{k}") for k, s in enumerate(temps)}
+    return ([(renamed.get(s, s), e.xreplace(renamed)) for s, e in subs],
+            [e.xreplace(renamed) for e in reduced])
 
 
 def _numpy_function(name, args, subs, reduced, doc, scalars: frozenset) -> tuple[str, int]:

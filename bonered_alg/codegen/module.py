@@ -308,19 +308,48 @@ def _rps_with_constants(rps: RPSSystem, c: dict) -> RPSSystem:
         tuple(tuple(tuple(sub(e) for e in row) for row in m) for m in rps.coefficients))
 
 
+# a quadratic step is tried in its half-angle form (:func:`_half_angle_split`) where A and
+# C have at most this many operations together (larger ones are never of that shape here)
+HALF_ANGLE_MAX_OPS = 400
+
+
+def _half_angle_split(coeffs: Sequence[sp.Expr], program: Program
+                      ) -> tuple[list[sp.Expr], list] | None:
+    """A quadratic step's ``[A, B, C]`` as ``[P - Q, B, P + Q]`` with ``P = (A + C)/2`` and
+    ``Q = (C - A)/2`` named values of ``program`` (its new entries returned beside), where
+    that has fewer operations; else None.  A revolute joint's generator in its
+    tan-half-angle ``t`` comes from ``a cos + b sin + c`` with ``cos = (1 - t^2)/(1 +
+    t^2)``: then ``A = c - a`` and ``C = c + a`` share every term but those of ``a``
+    (lamina_milling's theta1: ``lAF^2 - lOA^2 - x^2 - y^2 -+ 2 lOA x``, 20 operations
+    against 11)."""
+    a, c = (sp.expand(sp.sympify(e)) for e in (coeffs[0], coeffs[2]))
+    before = pr.count_ops(a) + pr.count_ops(c)
+    if before > HALF_ANGLE_MAX_OPS:
+        return None
+    p, q = sp.expand((a + c) / 2), sp.expand((c - a) / 2)
+    if p == 0 or q == 0 or pr.count_ops(p) + pr.count_ops(q) + 2 >= before:
+        return None
+    start = len(program.entries)
+    ps, qs = program.name(p), program.name(q)
+    return [ps - qs, coeffs[1], ps + qs], program.entries[start:]
+
+
 def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symbol],
                   par: Sequence[sp.Symbol], sub: dict, c: bool = False,
                   compact: dict | None = None, uses: list | None = None,
                   coefficients: list | None = None
                   ) -> tuple[list[Kernel], list[str], list]:
     """One kernel per back-substitution step; the ``(degree, kernel, mode bit)`` table rows.
-    A step in ``compact`` (a distance leg's geometric form) is evaluated in that form.
+    A step in ``compact`` (a distance leg's geometric form) is evaluated in that form, a
+    quadratic one in its half-angle form where that is smaller (:func:`_half_angle_split`).
     ``uses`` (a list) receives, per step, the indices of the earlier steps whose unknowns
     its coefficients contain (a kernel takes every earlier unknown as an argument);
-    ``coefficients`` (a list) each step's ``[A, B, C]`` as its kernel evaluates them."""
+    ``coefficients`` (a list) each step's ``([A, B, C], program entries)`` as its kernel
+    evaluates them."""
     kernels, rows, mode_bits = [], [], []
     solved: list[sp.Symbol] = []
     bit = 0
+    program = Program("_h")
     for k, st in enumerate(steps):
         coeffs = [sp.sympify(c).subs(sub) for c in (st.A, st.B, st.C)]
         form = (compact or {}).get(st.joint)
@@ -329,11 +358,19 @@ def _step_kernels(prefix: str, steps: Sequence[IKStep], inputs: Sequence[sp.Symb
         if uses is not None:
             free = set().union(*(sp.sympify(e).free_symbols for e in coeffs))
             uses.append(tuple(j for j, q in enumerate(solved) if q in free))
+        name = f"_{prefix}{k}_{st.joint}"
+        doc = (f"Coefficients (A, B, C) of the generator solved for {st.joint} "
+               f"(from {st.source}).")
+        kern = kernel(name, [*inputs, *solved, *par], coeffs, doc, c=c, scalars=par)
+        entries: list = []
+        split = _half_angle_split(coeffs, program) if st.degree == 2 else None
+        if split is not None:
+            alt = kernel(name, [*inputs, *solved, *par], split[0], doc, c=c, scalars=par,
+                         program=split[1])
+            if alt.operations < kern.operations:
+                kern, coeffs, entries = alt, split[0], split[1]
         if coefficients is not None:
-            coefficients.append(coeffs)
-        kern = kernel(f"_{prefix}{k}_{st.joint}", [*inputs, *solved, *par], coeffs,
-                      f"Coefficients (A, B, C) of the generator solved for {st.joint} "
-                      f"(from {st.source}).", c=c, scalars=par)
+            coefficients.append((coeffs, entries))
         kernels.append(kern)
         if st.degree == 2:
             mode_bits.append((str(st.joint), bit))
@@ -382,9 +419,10 @@ def write_ik_module(spec: IKModuleSpec) -> tuple[str, dict[str, int], str]:
     fused = None
     if len(spec.steps) > 1 and not any(step_uses):
         fused = kernel("_step_coefficients", [*study, *par],
-                       [e for coeffs in step_coeffs for e in coeffs],
+                       [e for coeffs, _ in step_coeffs for e in coeffs],
                        "Coefficients (A, B, C) of every IK step in order, of the Study "
-                       "coordinates alone (no step reads an earlier root).", scalars=par)
+                       "coordinates alone (no step reads an earlier root).", scalars=par,
+                       program=[e for _, entries in step_coeffs for e in entries])
         kernels.append(fused)
     bit = len(mode_bits)
     # forward kinematics' polynomial kernels, also in C (the compiled fast path calls them
