@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 70b02185efe8d1762804f02c9f4c4d8e3ae22bc81fa48ed37c132e9d31a6d7a5
+ * Derivation hash: d66d6f899377b4f1af088c97a17a8c5a94b54316e0bbff2b90589efe849b276f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "70b02185efe8d1762804f02c9f4c4d8e3ae22bc81fa48ed37c132e9d31a6d7a5";
+const char bonered_derivation_hash[] = "d66d6f899377b4f1af088c97a17a8c5a94b54316e0bbff2b90589efe849b276f";
 int bonered_abi(void) { return 3; }
 #endif
 

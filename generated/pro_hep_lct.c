@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c7281bddf8df36e82fa57e945886cc815b743af9f845d8a6305e720b4544afa2
+ * Derivation hash: 49b9f7959dfb79f77eca6c5ad5736bc7dd52b1514141623cd0c08641ab8042ca
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c7281bddf8df36e82fa57e945886cc815b743af9f845d8a6305e720b4544afa2";
+const char bonered_derivation_hash[] = "49b9f7959dfb79f77eca6c5ad5736bc7dd52b1514141623cd0c08641ab8042ca";
 int bonered_abi(void) { return 3; }
 #endif
 

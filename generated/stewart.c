@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b4049ae424ad768b29572d322ec3d2cfdf07f6f7cee750952ca088eb81c4ce9c
+ * Derivation hash: 17a7fcb968efd99d9edcfa2fdae872167468c0ec98d2d7557d67c75ebe95c741
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b4049ae424ad768b29572d322ec3d2cfdf07f6f7cee750952ca088eb81c4ce9c";
+const char bonered_derivation_hash[] = "17a7fcb968efd99d9edcfa2fdae872167468c0ec98d2d7557d67c75ebe95c741";
 int bonered_abi(void) { return 3; }
 #endif
 

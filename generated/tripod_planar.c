@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 2aeb69575b6dfd7388a2b6cd9a6cf28e57251a3cc349dd85e89a0a508deadb04
+ * Derivation hash: 8e46b23889d75351ae58d72f8636eabb07acce457c3e6ecea4a677c4a33431e1
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "2aeb69575b6dfd7388a2b6cd9a6cf28e57251a3cc349dd85e89a0a508deadb04";
+const char bonered_derivation_hash[] = "8e46b23889d75351ae58d72f8636eabb07acce457c3e6ecea4a677c4a33431e1";
 int bonered_abi(void) { return 3; }
 #endif
 

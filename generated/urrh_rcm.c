@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 3a52d0946b3be64171a3e011c1281d7b99e657c5fc70f85e5bd07792df9c2994
+ * Derivation hash: fa4343546b565092b7a53b5632c5fa21af16099a93b025598cb18b7764c8815e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "3a52d0946b3be64171a3e011c1281d7b99e657c5fc70f85e5bd07792df9c2994";
+const char bonered_derivation_hash[] = "fa4343546b565092b7a53b5632c5fa21af16099a93b025598cb18b7764c8815e";
 int bonered_abi(void) { return 3; }
 #endif
 

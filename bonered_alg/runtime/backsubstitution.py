@@ -125,6 +125,20 @@ def _times(minus, k, value):
     return numpy.where(minus.astype(bool), -k * value, k * value)
 
 
+def _one_sign(b) -> int:
+    """1 where every entry of the array ``b`` is > 0, -1 where every one is < 0, else 0
+    (a zero, a NaN, both signs, or a scalar): one reduction, the one that the first
+    entry's sign says."""
+    if not isinstance(b, numpy.ndarray) or b.ndim == 0 or b.size == 0:
+        return 0
+    first = b.flat[0]
+    if first > 0.0:
+        return 1 if numpy.minimum.reduce(b, axis=None) > 0.0 else 0
+    if first < 0.0:
+        return -1 if numpy.maximum.reduce(b, axis=None) < 0.0 else 0
+    return 0
+
+
 def _step_root(degree, a, b, c, minus, dest):
     """The root of one step written into ``dest`` (the root with ``-sqrt`` where ``minus``:
     0 or 1, or an array of them, :func:`_times`); returns the step's record for the status
@@ -155,13 +169,23 @@ def _step_root(degree, a, b, c, minus, dest):
     # zero root may differ in its sign).  Written as s / -2A for -s / 2A and -2C / s for
     # 2C / -s (the same numbers: IEEE negation and division are sign-symmetric), the
     # other branch's value divided into ``dest`` where it applies (no temporary array)
+    sign = _one_sign(b) if not isinstance(minus, numpy.ndarray) else 0
+    if sign:  # B of one sign throughout (as in a workspace's chunk): |B| is B or -B, and
+        # one branch applies to every pose, the one of -sqrt where B > 0 and +sqrt where
+        # B < 0 the near root s / -+2A, else the far one -+2C / s: the same numbers
+        s = numpy.add(b, sq, out=sq) if sign > 0 else numpy.subtract(sq, b, out=sq)
+        if (sign > 0) == bool(minus):
+            numpy.divide(s, _times(minus, 2.0, a), out=dest)
+        else:
+            numpy.divide(_times(1 - minus, 2.0, c), s, out=dest)
+        return ("quadratic", disc, bb)
     s = numpy.abs(b)
     if s.shape == sq.shape:
         s += sq
     else:  # B has fewer entries (a scalar; one per configuration beside the modes' axis)
         s = s + sq
-    # where one branch applies to every pose (B of one sign throughout a chunk, as in a
-    # workspace), only that branch is divided: the same numbers, one or two passes fewer
+    # where one branch applies to every pose, only that branch is divided: the same
+    # numbers, one or two passes fewer
     if not isinstance(minus, numpy.ndarray):
         other = (b < 0.0) if minus else (b > 0.0)
     else:
