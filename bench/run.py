@@ -48,6 +48,7 @@ from bonered_alg.elimination.engines import (  # noqa: E402
 )
 from bonered_alg.elimination.problem import EliminationProblem  # noqa: E402
 from bonered_alg.errors import EngineTimeoutError  # noqa: E402
+from bonered_alg.fileio import atomic_write_text  # noqa: E402
 from bonered_alg.mechanisms import pro_hep_lct as phl  # noqa: E402
 from bonered_alg.pipeline.algebra import Algebra  # noqa: E402
 from bonered_alg.pipeline.runner import derive  # noqa: E402
@@ -1031,6 +1032,15 @@ def _cpu_model() -> str:
     return platform.processor()
 
 
+def _machine() -> dict:
+    """What the figures depend on: the interpreter, numpy, sympy, Singular, the CPU, its
+    count and the malloc settings."""
+    return {"python": platform.python_version(), "numpy": np.__version__,
+            "cpu": _cpu_model(), "glibc_tunables": os.environ.get("GLIBC_TUNABLES"),
+            "sympy": sp.__version__, "cpus": os.cpu_count(),
+            "singular": SingularEngine().version() if SingularEngine().available() else None}
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
@@ -1040,10 +1050,13 @@ def main():
                                        "one_pose", "membership", "derive",
                                        "fast_path_build", "batch_sizes"],
                     default=None,
-                    help="re-run one section and merge it into the existing --out file")
+                    help="re-run one section and merge it into the --out file (a new file gets "
+                         "that section and the machine)")
     args = ap.parse_args()
     if args.only:
-        results = json.loads(args.out.read_text())
+        # merged into the file's other sections; a new file gets the machine's description
+        results = (json.loads(args.out.read_text()) if args.out.exists()
+                   else {"machine": _machine()})
         results[args.only] = {"workspace": workspace_benchmarks,
                               "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks,
                               "hand_written": hand_written_benchmarks,
@@ -1052,16 +1065,12 @@ def main():
                               "derive": derive_benchmarks,
                               "fast_path_build": fast_path_build_benchmarks,
                               "batch_sizes": batch_size_benchmarks}[args.only]()
-        args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
+        atomic_write_text(args.out, json.dumps(results, indent=2, sort_keys=True) + "\n")
         print(f"wrote {args.out} ({args.only} section)")
         return
     derivation = derive("pro_hep_lct").derivation
     results = {
-        "machine": {"python": platform.python_version(), "numpy": np.__version__,
-                    "cpu": _cpu_model(), "glibc_tunables": os.environ.get("GLIBC_TUNABLES"),
-                    "sympy": sp.__version__, "cpus": os.cpu_count(),
-                    "singular": SingularEngine().version() if SingularEngine().available()
-                    else None},
+        "machine": _machine(),
         "elimination": elimination_benchmarks(args.sympy_budget),
         "derive": derive_benchmarks(),
         "throughput": throughput_benchmarks(args.poses, derivation),
@@ -1075,7 +1084,7 @@ def main():
         "fast_path_build": fast_path_build_benchmarks(),
         "pro_hep_lct_tool": pro_hep_lct_tool_benchmarks(sympy_budget=args.sympy_budget),
     }
-    args.out.write_text(json.dumps(results, indent=2, sort_keys=True) + "\n")
+    atomic_write_text(args.out, json.dumps(results, indent=2, sort_keys=True) + "\n")
     print(f"wrote {args.out}")
 
 
