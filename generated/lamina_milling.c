@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: d66d6f899377b4f1af088c97a17a8c5a94b54316e0bbff2b90589efe849b276f
+ * Derivation hash: e42792b7440d89d8f224352ed3d82795dd571597410b955198b2a6b77877678d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "d66d6f899377b4f1af088c97a17a8c5a94b54316e0bbff2b90589efe849b276f";
+const char bonered_derivation_hash[] = "e42792b7440d89d8f224352ed3d82795dd571597410b955198b2a6b77877678d";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 759eb6bc7e79bed990f6ff1b3f0d22e3d5d8dea4a9a4fa6f0a9de4fec753c7d9
+ * Derivation hash: 13e6a0c120d7a91067d4f2173eee270add1104525d4141d209c667e00ade0662
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "759eb6bc7e79bed990f6ff1b3f0d22e3d5d8dea4a9a4fa6f0a9de4fec753c7d9";
+const char bonered_derivation_hash[] = "13e6a0c120d7a91067d4f2173eee270add1104525d4141d209c667e00ade0662";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 49b9f7959dfb79f77eca6c5ad5736bc7dd52b1514141623cd0c08641ab8042ca
+ * Derivation hash: b047ef6c4aad4942e9ede8f333d7d17c3e6eb560693b4abf36e566700067a959
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "49b9f7959dfb79f77eca6c5ad5736bc7dd52b1514141623cd0c08641ab8042ca";
+const char bonered_derivation_hash[] = "b047ef6c4aad4942e9ede8f333d7d17c3e6eb560693b4abf36e566700067a959";
 int bonered_abi(void) { return 3; }
 #endif
 

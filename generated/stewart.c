@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 17a7fcb968efd99d9edcfa2fdae872167468c0ec98d2d7557d67c75ebe95c741
+ * Derivation hash: cf92bdf8fd8d977cb9564fd82512ce69de25f3aa0aa50ad0dbea31eec484695f
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "17a7fcb968efd99d9edcfa2fdae872167468c0ec98d2d7557d67c75ebe95c741";
+const char bonered_derivation_hash[] = "cf92bdf8fd8d977cb9564fd82512ce69de25f3aa0aa50ad0dbea31eec484695f";
 int bonered_abi(void) { return 3; }
 #endif
 

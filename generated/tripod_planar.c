@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 8e46b23889d75351ae58d72f8636eabb07acce457c3e6ecea4a677c4a33431e1
+ * Derivation hash: c980b52e191ea99b7a35c7b901f99db648628f4857148a83675ad576acae4279
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "8e46b23889d75351ae58d72f8636eabb07acce457c3e6ecea4a677c4a33431e1";
+const char bonered_derivation_hash[] = "c980b52e191ea99b7a35c7b901f99db648628f4857148a83675ad576acae4279";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: fa4343546b565092b7a53b5632c5fa21af16099a93b025598cb18b7764c8815e
+ * Derivation hash: 94b38cb92c32987b66b0d10ff737f3cc9b0566454d8d29ce931e04b6151b0c32
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "fa4343546b565092b7a53b5632c5fa21af16099a93b025598cb18b7764c8815e";
+const char bonered_derivation_hash[] = "94b38cb92c32987b66b0d10ff737f3cc9b0566454d8d29ce931e04b6151b0c32";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -171,8 +171,9 @@ def _step_root(degree, a, b, c, minus, dest):
     # other branch's value divided into ``dest`` where it applies (no temporary array)
     sign = _one_sign(b) if not isinstance(minus, numpy.ndarray) else 0
     if sign:  # B of one sign throughout (as in a workspace's chunk): |B| is B or -B, and
-        # one branch applies to every pose, the one of -sqrt where B > 0 and +sqrt where
-        # B < 0 the near root s / -+2A, else the far one -+2C / s: the same numbers
+        # one branch applies to every pose: the near root s / -+2A for the -sqrt root
+        # where B > 0 and the +sqrt root where B < 0, else the far root -+2C / s (the
+        # numbers of the general rule below)
         s = numpy.add(b, sq, out=sq) if sign > 0 else numpy.subtract(sq, b, out=sq)
         if (sign > 0) == bool(minus):
             numpy.divide(s, _times(minus, 2.0, a), out=dest)
