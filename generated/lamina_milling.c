@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: e42792b7440d89d8f224352ed3d82795dd571597410b955198b2a6b77877678d
+ * Derivation hash: 0e46cf43f83bc7d5e7ebf279a8fac2ce2129b4ff3ef53eaf78dc6ac26ffc3229
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "e42792b7440d89d8f224352ed3d82795dd571597410b955198b2a6b77877678d";
+const char bonered_derivation_hash[] = "0e46cf43f83bc7d5e7ebf279a8fac2ce2129b4ff3ef53eaf78dc6ac26ffc3229";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: 13e6a0c120d7a91067d4f2173eee270add1104525d4141d209c667e00ade0662
+ * Derivation hash: 0eebff2253ca98835b4d5ddd375be9b21c8e50084a3625939db2b9e388d2fb99
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "13e6a0c120d7a91067d4f2173eee270add1104525d4141d209c667e00ade0662";
+const char bonered_derivation_hash[] = "0eebff2253ca98835b4d5ddd375be9b21c8e50084a3625939db2b9e388d2fb99";
 int bonered_abi(void) { return 3; }
 #endif
 

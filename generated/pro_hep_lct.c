@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: b047ef6c4aad4942e9ede8f333d7d17c3e6eb560693b4abf36e566700067a959
+ * Derivation hash: e935198ec2bcee812507299b45a333fd6803f3ef433dad9f0a2de44e8c4da21d
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "b047ef6c4aad4942e9ede8f333d7d17c3e6eb560693b4abf36e566700067a959";
+const char bonered_derivation_hash[] = "e935198ec2bcee812507299b45a333fd6803f3ef433dad9f0a2de44e8c4da21d";
 int bonered_abi(void) { return 3; }
 #endif
 

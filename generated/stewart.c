@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: cf92bdf8fd8d977cb9564fd82512ce69de25f3aa0aa50ad0dbea31eec484695f
+ * Derivation hash: 5c491e21d027f2e0690db529e20a3615b928e2a3b600c13d4ac197c26a544558
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "cf92bdf8fd8d977cb9564fd82512ce69de25f3aa0aa50ad0dbea31eec484695f";
+const char bonered_derivation_hash[] = "5c491e21d027f2e0690db529e20a3615b928e2a3b600c13d4ac197c26a544558";
 int bonered_abi(void) { return 3; }
 #endif
 

@@ -3,12 +3,12 @@
  * `make derive`.  The kernels are the numpy module's, printed as C from the same
  * common-subexpression programs; bonered_alg.runtime.compiled builds this file on
  * first use.
- * Derivation hash: c980b52e191ea99b7a35c7b901f99db648628f4857148a83675ad576acae4279
+ * Derivation hash: f98f19af71382562954862048e71100833e929dfc756f2bd402a3a4d9ebac86e
  */
 #include "bonered_fast.h"
 
 #if !defined(BF_PART) || BF_PART == 1
-const char bonered_derivation_hash[] = "c980b52e191ea99b7a35c7b901f99db648628f4857148a83675ad576acae4279";
+const char bonered_derivation_hash[] = "f98f19af71382562954862048e71100833e929dfc756f2bd402a3a4d9ebac86e";
 int bonered_abi(void) { return 3; }
 #endif
 

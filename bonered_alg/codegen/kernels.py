@@ -12,6 +12,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import sympy as sp
+from sympy.core.function import _coeff_isneg
 from sympy.core.mul import _keep_coeff
 from sympy.printing.c import C99CodePrinter
 from sympy.printing.numpy import NumPyPrinter
@@ -94,33 +95,16 @@ class _ScalarsFirst:
         out = _print_mul_scalars_first(self, expr, self.scalars) if self.scalars else None
         return super()._print_Mul(expr) if out is None else out
 
-    def _print_Add(self, expr, order=None):  # noqa: N802
-        return _print_add_without_leading_negation(self, expr, order)
-
-
-def _print_add_without_leading_negation(printer, expr, order=None) -> str:
-    """A sum as sympy's printers write it (``StrPrinter._print_Add``, terms in the same
-    order, evaluated left to right), except that a negative first term followed by a
-    positive one is written after it: ``-_c0 + x + y`` as ``x - _c0 + y``.  The numbers
-    are the same (``-a + b`` and ``b - a`` round alike: IEEE negation is exact and
-    addition commutes), and numpy saves the pass that negates the array ``_c0``."""
-    prec = precedence(expr)
-    parts = []
-    for term in printer._as_ordered_terms(expr, order=order):
-        t = printer._print(term)
-        sign = "+"
-        if t.startswith("-") and not term.is_Add:
-            sign, t = "-", t[1:]
-        if precedence(term) < prec or term.is_Add:
-            t = f"({t})"
-        parts.append((sign, t))
-    if len(parts) > 1 and parts[0][0] == "-" and parts[1][0] == "+":
-        parts[0], parts[1] = parts[1], parts[0]
-    first_sign, first = parts[0]
-    out = ("-" if first_sign == "-" else "") + first
-    for sign, t in parts[1:]:
-        out += f" {sign} {t}"
-    return out
+    def _as_ordered_terms(self, expr, order=None):
+        """A sum's terms in sympy's order (the printers' ``_print_Add`` writes them left to
+        right), except that a negative first term followed by a positive one goes after
+        it: ``-_c0 + x + y`` is written ``x - _c0 + y``.  The same numbers (the first two
+        terms of a sum commute, and IEEE negation is exact), and numpy saves the pass that
+        negates the array ``_c0``."""
+        terms = super()._as_ordered_terms(expr, order=order)
+        if len(terms) > 1 and _coeff_isneg(terms[0]) and not _coeff_isneg(terms[1]):
+            terms = [terms[1], terms[0], *terms[2:]]
+        return terms
 
 
 class _Printer(_ScalarsFirst, NumPyPrinter):
